@@ -1,0 +1,171 @@
+// Mesh reading through assimp (every format it knows) and OBJ / binary PLY writing at full double precision.
+// Our own writers exist because assimp's exporters go through its float vertex type and would round coordinates.
+#include "clothcd/mesh/mesh_io.hpp"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <array>
+#include <assimp/Importer.hpp>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "clothcd/mesh/mesh_error.hpp"
+#include "clothcd/mesh/mesh_validation.hpp"
+
+namespace clothcd {
+namespace {
+
+namespace fs = std::filesystem;
+
+void check_readable_file(const fs::path& path) {
+  std::error_code error;
+  const auto status = fs::status(path, error);
+  if (!fs::exists(status)) throw MeshError(path.string(), "no such file");
+  if (fs::is_directory(status)) throw MeshError(path.string(), "is a directory, not a mesh file");
+  if (fs::file_size(path, error) == 0) throw MeshError(path.string(), "the file is empty");
+}
+
+const aiScene* import_scene(Assimp::Importer& importer, const fs::path& path) {
+  // Points and lines are not surfaces: drop them, keep triangles (polygons are triangulated).
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                         aiProcess_ValidateDataStructure;
+  const aiScene* scene = importer.ReadFile(path.string(), flags);
+  if (scene == nullptr) {
+    std::string reason = importer.GetErrorString();
+    if (reason.empty()) reason = "unknown error";
+    throw MeshError(path.string(), "cannot be read as a mesh (" + reason + ")");
+  }
+  return scene;
+}
+
+/// Appends the triangles of every mesh of the scene; vertex indices are offset per mesh.
+TriangleMesh collect_triangles(const aiScene& scene, LoadReport& report) {
+  std::size_t vertex_total = 0, face_total = 0;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    vertex_total += scene.mMeshes[m]->mNumVertices;
+    for (unsigned f = 0; f < scene.mMeshes[m]->mNumFaces; ++f) face_total += scene.mMeshes[m]->mFaces[f].mNumIndices == 3;
+  }
+  TriangleMesh mesh;
+  mesh.vertices.resize(static_cast<Eigen::Index>(vertex_total), 3);
+  mesh.faces.resize(static_cast<Eigen::Index>(face_total), 3);
+  Eigen::Index v_out = 0, f_out = 0;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& source = *scene.mMeshes[m];
+    const auto offset = static_cast<int>(v_out);
+    for (unsigned v = 0; v < source.mNumVertices; ++v, ++v_out) {
+      mesh.vertices.row(v_out) << source.mVertices[v].x, source.mVertices[v].y, source.mVertices[v].z;
+    }
+    for (unsigned f = 0; f < source.mNumFaces; ++f) {
+      const aiFace& face = source.mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      for (int c = 0; c < 3; ++c) mesh.faces(f_out, c) = offset + static_cast<int>(face.mIndices[c]);
+      ++f_out;
+    }
+  }
+  report.source_meshes = static_cast<int>(scene.mNumMeshes);
+  return mesh;
+}
+
+/// Merges vertices with bit-identical coordinates and drops vertices no face uses.
+void join_identical_vertices(TriangleMesh& mesh, LoadReport& report) {
+  struct KeyHash {
+    std::size_t operator()(const std::array<std::uint64_t, 3>& k) const {
+      return std::hash<std::uint64_t>()(k[0] * 0x9E3779B97F4A7C15ull ^ (k[1] + 0x632BE59BD9B4E019ull) * 31 ^ k[2]);
+    }
+  };
+  std::unordered_map<std::array<std::uint64_t, 3>, int, KeyHash> first_index;
+  first_index.reserve(static_cast<std::size_t>(mesh.vertex_count()));
+  std::vector<int> remap(static_cast<std::size_t>(mesh.vertex_count()), -1);
+  std::vector<bool> used(remap.size(), false);
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    for (int c = 0; c < 3; ++c) used[static_cast<std::size_t>(mesh.faces(f, c))] = true;
+  }
+  Vertices joined(mesh.vertex_count(), 3);
+  int next = 0;
+  for (Eigen::Index v = 0; v < mesh.vertex_count(); ++v) {
+    if (!used[static_cast<std::size_t>(v)]) continue;
+    std::array<std::uint64_t, 3> key{};
+    for (int c = 0; c < 3; ++c) {
+      const double value = mesh.vertices(v, c) == 0.0 ? 0.0 : mesh.vertices(v, c);  // -0 and +0 are one position
+      std::memcpy(&key[static_cast<std::size_t>(c)], &value, sizeof(double));
+    }
+    const auto [it, inserted] = first_index.emplace(key, next);
+    if (inserted) joined.row(next++) = mesh.vertices.row(v);
+    remap[static_cast<std::size_t>(v)] = it->second;
+  }
+  report.vertices_joined = static_cast<int>(std::count(used.begin(), used.end(), true)) - next;
+  joined.conservativeResize(next, 3);
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    for (int c = 0; c < 3; ++c) mesh.faces(f, c) = remap[static_cast<std::size_t>(mesh.faces(f, c))];
+  }
+  mesh.vertices = std::move(joined);
+}
+
+void save_obj(const TriangleMesh& mesh, std::ofstream& out) {
+  out.precision(17);
+  out << "# written by clothcd\n";
+  for (Eigen::Index v = 0; v < mesh.vertex_count(); ++v) {
+    out << "v " << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2) << '\n';
+  }
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' ' << mesh.faces(f, 2) + 1 << '\n';
+  }
+}
+
+void save_binary_ply(const TriangleMesh& mesh, std::ofstream& out) {
+  static_assert(sizeof(double) == 8 && sizeof(int) == 4, "PLY layout assumes 8-byte double and 4-byte int");
+  out << "ply\nformat binary_little_endian 1.0\ncomment written by clothcd\n"
+      << "element vertex " << mesh.vertex_count() << "\nproperty double x\nproperty double y\nproperty double z\n"
+      << "element face " << mesh.face_count() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  out.write(reinterpret_cast<const char*>(mesh.vertices.data()),
+            static_cast<std::streamsize>(mesh.vertices.size() * sizeof(double)));
+  const std::uint8_t corner_count = 3;
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    out.write(reinterpret_cast<const char*>(&corner_count), 1);
+    out.write(reinterpret_cast<const char*>(mesh.faces.row(f).data()), 3 * sizeof(int));
+  }
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadReport* report) {
+  check_readable_file(path);
+  LoadReport local_report;
+  Assimp::Importer importer;
+  const aiScene* scene = import_scene(importer, path);
+  TriangleMesh mesh = collect_triangles(*scene, local_report);
+  if (mesh.face_count() == 0) throw MeshError(path.string(), "the file holds no triangles");
+  validate_mesh(mesh, path.string());
+  if (options.join_identical_vertices) join_identical_vertices(mesh, local_report);
+  if (options.drop_degenerate_faces) {
+    local_report.degenerate_faces_dropped = drop_degenerate_faces(mesh);
+    if (mesh.face_count() == 0) throw MeshError(path.string(), "every face is degenerate (zero area)");
+  }
+  if (report != nullptr) *report = local_report;
+  return mesh;
+}
+
+void save_mesh(const TriangleMesh& mesh, const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".obj" && extension != ".ply") {
+    throw MeshError(path.string(), "unsupported output format '" + extension + "' (use .obj or .ply)");
+  }
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw MeshError(path.string(), "cannot be opened for writing");
+  if (extension == ".obj") {
+    save_obj(mesh, out);
+  } else {
+    save_binary_ply(mesh, out);
+  }
+  out.close();
+  if (!out) throw MeshError(path.string(), "write failed");
+}
+
+}  // namespace clothcd

@@ -1,0 +1,15 @@
+#pragma once
+// Subcommand registration for the clothcd program: each command_*.cpp adds one subcommand to the app.
+
+#include <CLI/CLI.hpp>
+
+namespace clothcd::cli {
+
+/// Adds `clothcd info MESH`.
+void add_info_command(CLI::App& app);
+/// Adds `clothcd convert IN OUT`.
+void add_convert_command(CLI::App& app);
+/// Adds `clothcd meshes [--dir DIR]`.
+void add_meshes_command(CLI::App& app);
+
+}  // namespace clothcd::cli
