@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// What collision detection reports: one record per colliding primitive pair.
+
+#include <Eigen/Dense>
+#include <array>
+#include <cstdint>
+
+namespace clothcd {
+
+/// A vertex of the scene: which body it belongs to and its index there. Body 0 is the cloth; body k >= 1 is obstacle k-1.
+struct VertexRef {
+  std::int32_t body = 0;    ///< 0 = cloth, k >= 1 = obstacle k-1.
+  std::int32_t vertex = 0;  ///< Index in that body's vertex array.
+};
+
+/// The two kinds of primitive pairs of continuous collision detection.
+enum class PairKind : std::uint8_t {
+  VertexFace,  ///< vertices[0] is the vertex, vertices[1..3] the triangle.
+  EdgeEdge,    ///< vertices[0..1] is edge a, vertices[2..3] edge b.
+};
+
+/// One collision found over a step [t0, t1].
+struct Collision {
+  PairKind kind = PairKind::VertexFace;  ///< Pair kind.
+  std::array<VertexRef, 4> vertices{};   ///< The four vertices, ordered as PairKind says.
+  double toi = 0.0;                      ///< Earliest time of impact as a fraction of the step, in [0, 1].
+  /// VertexFace: barycentric weights of the contact point on the triangle (w1, w2; w0 = 1 - w1 - w2).
+  /// EdgeEdge: the parameters (s on edge a, u on edge b) of the closest points, each in [0, 1].
+  std::array<double, 2> parameters{};
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi, from the second primitive to the first.
+  bool conservative = false;  ///< True when reported because exactness could not be established (toi is then 0).
+};
+
+}  // namespace clothcd
