@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// The library entry point for a simulation loop: give it the cloth topology and the obstacles once, then per step the
+/// cloth positions at the start and end of the step; it returns every colliding vertex-face and edge-edge pair.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "clothcd/detection/collision.hpp"
+#include "clothcd/mesh/triangle_mesh.hpp"
+
+namespace clothcd {
+
+/// Which bounding volume hierarchy finds candidate pairs.
+enum class HierarchyKind {
+  SphereRootAabb,  ///< Sphere BVH whose root also carries an AABB (the paper's root-node double bounding box).
+  Aabb,            ///< Plain AABB BVH.
+  AabbObb,         ///< AABBs on the cloth side, OBBs on the obstacle side.
+};
+
+/// Which culling runs on candidate pairs before the exact CCD.
+enum class CullingMode {
+  None,            ///< Every candidate goes to the exact CCD.
+  NonPenetration,  ///< The algebraic (Bernstein) non-penetration filter.
+  Projection,      ///< The spatial linear projection filter.
+  Filters,         ///< Both filters, cheaper first.
+  Network,         ///< The learned network (with its conservative safety check).
+};
+
+/// Detector settings; defaults are what a cloth simulation wants.
+struct DetectorSettings {
+  HierarchyKind hierarchy = HierarchyKind::SphereRootAabb;  ///< Broad phase.
+  CullingMode culling = CullingMode::Filters;               ///< Culling before the exact CCD.
+  double thickness = 0.0;       ///< Minimum separation (scene units); pairs closer than this count as colliding.
+  bool self_collision = true;   ///< Also test the cloth against itself.
+  std::string model_path;       ///< Network model for CullingMode::Network (empty: the committed default model).
+};
+
+/// Counts and times of the last detect() call.
+struct DetectionStats {
+  long candidates_vertex_face = 0;  ///< Candidate pairs after the broad phase.
+  long candidates_edge_edge = 0;    ///< Candidate pairs after the broad phase.
+  long culled = 0;                  ///< Pairs removed by the culling stage.
+  long collisions = 0;              ///< Pairs the exact CCD confirmed.
+  double refit_ms = 0;              ///< Time to refit (or rebuild) the hierarchies.
+  double traversal_ms = 0;          ///< Time to find candidate pairs.
+  double culling_ms = 0;            ///< Time in the culling stage.
+  double exact_ms = 0;              ///< Time in the exact CCD.
+};
+
+/// Continuous collision detection between a cloth and obstacles, step after step.
+class CollisionDetector {
+ public:
+  /// Takes the cloth's triangles (indices into its `cloth_vertex_count` vertices) and the settings.
+  /// Throws std::invalid_argument on out-of-range indices or an empty cloth.
+  CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings = {});
+  ~CollisionDetector();
+  CollisionDetector(CollisionDetector&&) noexcept;             ///< Movable.
+  CollisionDetector& operator=(CollisionDetector&&) noexcept;  ///< Movable.
+
+  /// Adds a static obstacle; returns its body id (1, 2, ...). Throws std::invalid_argument on an invalid mesh.
+  int add_obstacle(const TriangleMesh& mesh);
+
+  /// Sets the positions of obstacle `body` at the start and end of the next step (a moving obstacle); both #V x 3.
+  void set_obstacle_positions(int body, const Vertices& start, const Vertices& end);
+
+  /// Finds every collision of the step: cloth positions `start` and `end` (#V x 3 each, finite).
+  /// The returned reference stays valid until the next call.
+  const std::vector<Collision>& detect(const Vertices& start, const Vertices& end);
+
+  /// Counts and times of the last detect() call.
+  [[nodiscard]] const DetectionStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace clothcd
