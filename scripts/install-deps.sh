@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs clothcd's Debian dependencies (skips apt when every package is already installed).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build python3-pip  # toolchain; pip downloads OpenNN's source distribution
+  libeigen3-dev        # linear algebra in every public type
+  libassimp-dev        # reading OBJ, PLY, OFF, STL, 3DS, BLEND, DAE, glTF, ...
+  catch2               # the test framework
+  libcli11-dev         # the clothcd program's subcommands and options
+  libgmp-dev           # exact rational arithmetic: the CCD reference and its uncertain-case fallback
+  libtbb-dev           # parallel broad phase and batched culling on both cores
+  libarchive-dev       # extracting the obstacle models from libcgal-demo's data archive
+  libstb-dev           # PNG pictures and charts
+  libcgal-demo         # obstacle models: rabbit, dinosaur, human, cow, sphere, cube
+  assimp-testmodels    # obstacle models: HUMAN.blend, duck.dae (the bird)
+  glmark2-data         # obstacle model: cat
+  libmeshoptimizer-dev # benchmark peer: QEM simplification (linked into bench/ only)
+  libcgal-dev          # benchmark peer: Garland-Heckbert simplification, optimal OBB (bench/ only)
+  libfcl-dev           # benchmark peer: AABB/OBB BVH broad phase (bench/ only)
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]} == 0)); then
+  echo "Debian packages: all ${#packages[@]} installed"
+  exit 0
+fi
+echo "Installing Debian packages: ${missing[*]}"
+sudo_cmd=()
+[[ $(id -u) -eq 0 ]] || sudo_cmd=(sudo)
+"${sudo_cmd[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
