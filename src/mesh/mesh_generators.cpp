@@ -88,7 +88,7 @@ TriangleMesh make_uv_sphere(double radius, int slices, int stacks) {
     for (int s = 0; s < slices; ++s) {
       const double azimuth = 2 * kPi * s / slices;
       mesh.vertices.row(r * slices + s) << radius * std::sin(polar) * std::cos(azimuth), -radius * std::cos(polar),
-          -radius * std::sin(polar) * std::sin(azimuth);
+          radius * std::sin(polar) * std::sin(azimuth);
     }
   }
   mesh.vertices.row(rings * slices) << 0, -radius, 0;

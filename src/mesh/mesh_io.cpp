@@ -6,7 +6,10 @@
 #include <assimp/scene.h>
 
 #include <array>
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
+#include <mutex>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -30,7 +33,46 @@ void check_readable_file(const fs::path& path) {
   if (fs::file_size(path, error) == 0) throw MeshError(path.string(), "the file is empty");
 }
 
-const aiScene* import_scene(Assimp::Importer& importer, const fs::path& path) {
+/// Collects the error messages assimp logs. Some readers log a problem and repair it silently (the OFF reader clamps
+/// out-of-range indices, for one); a mesh that needed such a repair is rejected rather than used wrongly.
+class ErrorCollector : public Assimp::LogStream {
+ public:
+  void write(const char* message) override {
+    if (first_error_.empty()) first_error_ = message;
+    while (!first_error_.empty() && (first_error_.back() == '\n' || first_error_.back() == '\r')) first_error_.pop_back();
+  }
+  [[nodiscard]] const std::string& first_error() const { return first_error_; }
+
+ private:
+  std::string first_error_;
+};
+
+/// assimp's logger is process-wide: imports are serialized so each one sees only its own errors.
+std::mutex& import_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+/// Installs the error collector as assimp's logger for the lifetime of one import.
+class ScopedErrorLog {
+ public:
+  ScopedErrorLog() {
+    Assimp::DefaultLogger::create(nullptr, Assimp::Logger::NORMAL, 0);
+    Assimp::DefaultLogger::get()->attachStream(&collector_, Assimp::Logger::Err);
+  }
+  ~ScopedErrorLog() {
+    Assimp::DefaultLogger::get()->detachStream(&collector_, Assimp::Logger::Err);
+    Assimp::DefaultLogger::kill();
+  }
+  ScopedErrorLog(const ScopedErrorLog&) = delete;
+  ScopedErrorLog& operator=(const ScopedErrorLog&) = delete;
+  [[nodiscard]] const std::string& first_error() const { return collector_.first_error(); }
+
+ private:
+  ErrorCollector collector_;
+};
+
+const aiScene* import_scene(Assimp::Importer& importer, const fs::path& path, const ScopedErrorLog& log) {
   // Points and lines are not surfaces: drop them, keep triangles (polygons are triangulated).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
@@ -40,6 +82,9 @@ const aiScene* import_scene(Assimp::Importer& importer, const fs::path& path) {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "unknown error";
     throw MeshError(path.string(), "cannot be read as a mesh (" + reason + ")");
+  }
+  if (!log.first_error().empty()) {
+    throw MeshError(path.string(), "malformed mesh file (the reader reported: " + log.first_error() + ")");
   }
   return scene;
 }
@@ -137,8 +182,10 @@ void save_binary_ply(const TriangleMesh& mesh, std::ofstream& out) {
 TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadReport* report) {
   check_readable_file(path);
   LoadReport local_report;
+  const std::lock_guard<std::mutex> lock(import_mutex());
+  const ScopedErrorLog log;
   Assimp::Importer importer;
-  const aiScene* scene = import_scene(importer, path);
+  const aiScene* scene = import_scene(importer, path, log);
   TriangleMesh mesh = collect_triangles(*scene, local_report);
   if (mesh.face_count() == 0) throw MeshError(path.string(), "the file holds no triangles");
   validate_mesh(mesh, path.string());

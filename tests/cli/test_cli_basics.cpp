@@ -1,0 +1,50 @@
+// The clothcd program: help, info, convert, meshes, and one-line errors with a non-zero exit.
+#include <catch2/catch.hpp>
+
+#include "clothcd/mesh/mesh_generators.hpp"
+#include "clothcd/mesh/mesh_io.hpp"
+#include "support/test_support.hpp"
+
+using clothcd::test::run_cli;
+using clothcd::test::TempDir;
+
+TEST_CASE("clothcd --help lists the subcommands", "[cli]") {
+  const auto run = run_cli("--help");
+  CHECK(run.exit_code == 0);
+  for (const char* command : {"info", "convert", "meshes"}) CHECK(run.output.find(command) != std::string::npos);
+  CHECK(run_cli("info --help").exit_code == 0);
+  CHECK(run_cli("").exit_code != 0);
+  CHECK(run_cli("no-such-command").exit_code != 0);
+}
+
+TEST_CASE("clothcd info and convert on a generated mesh", "[cli]") {
+  TempDir dir;
+  clothcd::save_mesh(clothcd::make_box(), dir / "box.obj");
+  const auto info = run_cli("info '" + (dir / "box.obj").string() + "'");
+  REQUIRE(info.exit_code == 0);
+  CHECK(info.output.find("faces:            12") != std::string::npos);
+  CHECK(info.output.find("watertight:       yes") != std::string::npos);
+
+  const auto convert = run_cli("convert '" + (dir / "box.obj").string() + "' '" + (dir / "box.ply").string() + "'");
+  REQUIRE(convert.exit_code == 0);
+  CHECK(clothcd::load_mesh(dir / "box.ply").face_count() == 12);
+}
+
+TEST_CASE("clothcd errors are one line on stderr with a non-zero exit", "[cli][errors]") {
+  TempDir dir;
+  const auto missing = run_cli("info '" + (dir / "missing.obj").string() + "'");
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.output.rfind("clothcd: error: ", 0) == 0);
+  CHECK(missing.output.find('\n') == missing.output.size() - 1);
+  clothcd::test::write_file(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  CHECK(run_cli("convert '" + (dir / "nan.obj").string() + "' '" + (dir / "out.obj").string() + "'").exit_code == 1);
+}
+
+TEST_CASE("clothcd meshes fills the cache folder and writes an index", "[cli][models]") {
+  TempDir dir;
+  const auto run = run_cli("meshes --dir '" + (dir / "models").string() + "'");
+  REQUIRE(run.exit_code == 0);
+  CHECK(std::filesystem::exists(dir / "models" / "index.csv"));
+  CHECK(run.output.find("rabbit") != std::string::npos);
+  CHECK(run.output.find("75408") != std::string::npos);
+}

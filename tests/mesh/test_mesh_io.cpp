@@ -1,0 +1,197 @@
+// Loading and saving meshes: round trips, the Debian models, and every kind of bad input.
+#include <algorithm>
+#include <array>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+
+#include "clothcd/geometry/bounding_volumes.hpp"
+#include "clothcd/mesh/mesh_error.hpp"
+#include "clothcd/mesh/mesh_generators.hpp"
+#include "clothcd/mesh/mesh_info.hpp"
+#include "clothcd/mesh/mesh_io.hpp"
+#include "clothcd/mesh/mesh_validation.hpp"
+#include "clothcd/mesh/model_catalog.hpp"
+#include "support/test_support.hpp"
+
+using clothcd::load_mesh;
+using clothcd::MeshError;
+using clothcd::save_mesh;
+using clothcd::TriangleMesh;
+using clothcd::test::TempDir;
+using clothcd::test::write_file;
+
+namespace {
+
+/// `mesh` with its vertices renumbered in order of first use by the faces, which is the numbering a loader that
+/// rebuilds shared vertices from a polygon soup (assimp's OBJ reader followed by our join) produces.
+TriangleMesh renumbered_by_first_use(const TriangleMesh& mesh) {
+  std::vector<int> new_index(static_cast<std::size_t>(mesh.vertex_count()), -1);
+  TriangleMesh result;
+  result.vertices.resize(mesh.vertex_count(), 3);
+  result.faces.resize(mesh.face_count(), 3);
+  int next = 0;
+  for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      int& index = new_index[static_cast<std::size_t>(mesh.faces(f, c))];
+      if (index < 0) {
+        index = next++;
+        result.vertices.row(index) = mesh.vertices.row(mesh.faces(f, c));
+      }
+      result.faces(f, c) = index;
+    }
+  }
+  result.vertices.conservativeResize(next, 3);
+  return result;
+}
+
+/// Same faces, and positions equal up to float rounding (assimp stores coordinates as float). PLY keeps the numbering;
+/// OBJ comes back numbered by first use.
+void require_same_mesh(const TriangleMesh& saved, const TriangleMesh& loaded, bool same_numbering) {
+  const TriangleMesh expected = same_numbering ? saved : renumbered_by_first_use(saved);
+  REQUIRE(expected.vertex_count() == loaded.vertex_count());
+  REQUIRE(expected.faces == loaded.faces);
+  const double scale = expected.vertices.cwiseAbs().maxCoeff();
+  REQUIRE((expected.vertices - loaded.vertices).cwiseAbs().maxCoeff() <= scale * 1e-6);
+}
+
+std::string ply_header(int vertices, int faces) {
+  return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces) +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+/// Requires load_mesh(path) to throw a MeshError whose message names the file and contains `problem`.
+void require_load_error(const std::filesystem::path& path, const std::string& problem) {
+  try {
+    (void)load_mesh(path);
+    FAIL("expected an error for " << path);
+  } catch (const MeshError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.find(path.string()) != std::string::npos);
+    CHECK(message.find(problem) != std::string::npos);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("generated meshes survive an OBJ and a PLY round trip", "[mesh][io]") {
+  TempDir dir;
+  const auto extension = GENERATE(as<std::string>{}, ".obj", ".ply");
+  for (const TriangleMesh& mesh : {clothcd::make_paper_cloth('A'), clothcd::make_uv_sphere(2.0, 12, 7),
+                                   clothcd::make_box(Eigen::Vector3d(1, 2, 3)), clothcd::make_fish()}) {
+    const auto path = dir / ("mesh" + extension);
+    save_mesh(mesh, path);
+    require_same_mesh(mesh, load_mesh(path), extension == ".ply");
+  }
+}
+
+TEST_CASE("identical vertices are joined across a polygon soup", "[mesh][io]") {
+  TempDir dir;
+  // Two triangles written as a soup of six corners: four distinct positions.
+  const auto path = write_file(dir / "soup.obj",
+                               "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n");
+  clothcd::LoadReport report;
+  const TriangleMesh mesh = load_mesh(path, {}, &report);
+  CHECK(mesh.vertex_count() == 4);
+  CHECK(mesh.face_count() == 2);
+  CHECK(report.vertices_joined == 2);
+  CHECK(clothcd::compute_mesh_info(mesh).components == 1);
+}
+
+TEST_CASE("quads are triangulated", "[mesh][io]") {
+  TempDir dir;
+  const auto path = write_file(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  const TriangleMesh mesh = load_mesh(path);
+  CHECK(mesh.face_count() == 2);
+  CHECK(clothcd::compute_mesh_info(mesh).surface_area == Approx(1.0));
+}
+
+TEST_CASE("degenerate faces are reported and dropped", "[mesh][io]") {
+  TempDir dir;
+  // Face 2 is collinear, face 3 repeats an index: both have zero area.
+  const auto path = write_file(dir / "degenerate.obj",
+                               "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n");
+  clothcd::LoadReport report;
+  const TriangleMesh mesh = load_mesh(path, {}, &report);
+  CHECK(mesh.face_count() == 1);
+  CHECK(report.degenerate_faces_dropped >= 1);
+
+  clothcd::LoadOptions keep;
+  keep.drop_degenerate_faces = false;
+  CHECK(clothcd::compute_mesh_info(load_mesh(path, keep)).degenerate_faces >= 1);
+}
+
+TEST_CASE("the Debian-package models load, validate and round-trip", "[mesh][io][models]") {
+  TempDir dir;
+  for (const auto& model : clothcd::model_catalog()) {
+    INFO(model.name);
+    const TriangleMesh mesh = load_mesh(clothcd::fetch_model(model.name, clothcd::test::test_model_dir()));
+    CHECK(mesh.face_count() >= 12);
+    CHECK(clothcd::compute_mesh_info(mesh).degenerate_faces == 0);
+    const auto path = dir / (model.name + ".ply");
+    save_mesh(mesh, path);
+    require_same_mesh(mesh, load_mesh(path), true);
+  }
+}
+
+TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][errors]") {
+  TempDir dir;
+  SECTION("missing file") { require_load_error(dir / "nothing-here.obj", "no such file"); }
+  SECTION("a directory") { require_load_error(dir.path(), "is a directory"); }
+  SECTION("empty file") { require_load_error(write_file(dir / "empty.ply", ""), "empty"); }
+  SECTION("truncated PLY") {
+    require_load_error(write_file(dir / "truncated.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n"), "");
+  }
+  SECTION("truncated binary PLY") {
+    TriangleMesh mesh = clothcd::make_paper_cloth('A');
+    const auto whole = dir / "whole.ply";
+    save_mesh(mesh, whole);
+    std::ifstream in(whole, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    require_load_error(write_file(dir / "cut.ply", bytes.substr(0, bytes.size() / 2)), "");
+  }
+  SECTION("NaN coordinate") {
+    require_load_error(write_file(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n"), "non-finite");
+  }
+  SECTION("infinite coordinate in PLY") {
+    require_load_error(write_file(dir / "inf.ply", ply_header(3, 1) + "0 0 0\n1 0 0\ninf 1 0\n3 0 1 2\n"),
+                       "non-finite");
+  }
+  SECTION("out-of-range index in OBJ") {
+    require_load_error(write_file(dir / "index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"), "out of range");
+  }
+  SECTION("out-of-range index in PLY") {
+    require_load_error(write_file(dir / "index.ply", ply_header(3, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n"),
+                       "out of range");
+  }
+  SECTION("out-of-range index in OFF (which assimp would clamp silently)") {
+    require_load_error(write_file(dir / "index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n"), "out of range");
+  }
+  SECTION("no faces") { require_load_error(write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\n"), ""); }
+  SECTION("only degenerate faces") {
+    require_load_error(write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate");
+  }
+  SECTION("not a mesh") { require_load_error(write_file(dir / "junk.xyz", "garbage\x01\x02"), "cannot be read"); }
+}
+
+TEST_CASE("saving rejects unknown formats and unwritable paths", "[mesh][io][errors]") {
+  TempDir dir;
+  const TriangleMesh mesh = clothcd::make_box();
+  CHECK_THROWS_AS(save_mesh(mesh, dir / "box.stl"), MeshError);
+  CHECK_THROWS_AS(save_mesh(mesh, dir / "no-such-folder" / "box.obj"), MeshError);
+}
+
+TEST_CASE("validate_mesh rejects NaN, bad indices and empty meshes", "[mesh][validation]") {
+  TriangleMesh mesh = clothcd::make_box();
+  CHECK_NOTHROW(clothcd::validate_mesh(mesh, "box"));
+  TriangleMesh nan_mesh = mesh;
+  nan_mesh.vertices(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(clothcd::validate_mesh(nan_mesh, "box"), Catch::Contains("vertex 3"));
+  TriangleMesh bad_index = mesh;
+  bad_index.faces(5, 2) = -1;
+  CHECK_THROWS_WITH(clothcd::validate_mesh(bad_index, "box"), Catch::Contains("face 5"));
+  TriangleMesh empty;
+  CHECK_THROWS_WITH(clothcd::validate_mesh(empty, "empty"), Catch::Contains("no faces"));
+}
