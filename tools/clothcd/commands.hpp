@@ -11,5 +11,7 @@ void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 /// Adds `clothcd meshes [--dir DIR]`.
 void add_meshes_command(CLI::App& app);
+/// Adds `clothcd ccd PATH [--type vf|ee] [--filter ...] [--thickness H] [--json] [--per-query FILE]`.
+void add_ccd_command(CLI::App& app);
 
 }  // namespace clothcd::cli

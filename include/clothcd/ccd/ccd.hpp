@@ -1,0 +1,113 @@
+#pragma once
+/// @file
+/// Continuous collision detection (CCD) of one vertex-face or edge-edge pair moving linearly over a step t in [0, 1]:
+/// the safe narrow phase, its exact rational reference and the two culling filters of Jin et al. (sections 2.2, 2.3).
+///
+/// Safety contract: no function here ever misses a collision of the query as given (the double coordinates are taken
+/// as exact). When floating-point arithmetic cannot decide, the exact rational path decides; filters cull a pair only
+/// when their sign tests are certain under a rigorous rounding-error bound.
+
+#include <Eigen/Dense>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "clothcd/detection/collision.hpp"
+
+namespace clothcd::ccd {
+
+/// One CCD query: four points at the start (t = 0) and end (t = 1) of the step, moving linearly in between.
+/// VertexFace: {vertex, t0, t1, t2}; EdgeEdge: {a0, a1, b0, b1} (the order of the public benchmark's CSV files).
+struct CcdQuery {
+  PairKind kind = PairKind::VertexFace;             ///< Pair kind.
+  std::array<Eigen::Vector3d, 4> start{};           ///< Positions at t = 0.
+  std::array<Eigen::Vector3d, 4> end{};             ///< Positions at t = 1.
+};
+
+/// Settings shared by all queries of a step.
+struct CcdSettings {
+  /// Minimum separation (same length unit as the coordinates, >= 0). With thickness > 0 a pair collides when its distance
+  /// gets <= thickness during the step; that test is conservative (it may report pairs that stay slightly farther apart).
+  double thickness = 0.0;
+};
+
+/// How a CCD answer was established.
+enum class CcdState : std::uint8_t {
+  Separated,        ///< Proven not to collide.
+  Hit,              ///< Proven to collide (toi is a lower bound of the earliest contact time).
+  ConservativeHit,  ///< Could not be proven either way (only with thickness > 0); reported as a hit, toi a lower bound.
+};
+
+/// Result of continuous_collision.
+struct CcdResult {
+  bool hit = false;                   ///< True for Hit and ConservativeHit.
+  double toi = 1.0;                   ///< Lower bound of the earliest time of impact in [0, 1] (1 when separated).
+  CcdState state = CcdState::Separated;  ///< How the answer was established.
+  /// VertexFace: barycentric weights (w1, w2) of the contact on the triangle; EdgeEdge: (s on edge a, u on edge b).
+  /// Approximate (evaluated at toi); {0, 0} when unknown.
+  std::array<double, 2> parameters{};
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi (zero when unknown or degenerate).
+};
+
+/// Extra options of the projection filter.
+struct ProjectionFilterOptions {
+  /// Also project onto directions derived from the primitives (face normal or edge cross product at t = 0 and t = 1),
+  /// in addition to the paper's five fixed directions of eq. (10).
+  bool use_primitive_normals = false;
+};
+
+/// Which filter a batch runs before the narrow phase.
+enum class CcdFilter : std::uint8_t {
+  None,            ///< Keep every pair.
+  NonPenetration,  ///< Bernstein-form sign test of the coplanarity cubic (section 2.2).
+  Projection,      ///< Separation along the five directions of eq. (10) at both ends of the step (section 2.3).
+  Combined,        ///< Non-penetration first (cheaper), then projection.
+};
+
+/// Throws std::invalid_argument when a coordinate is NaN or infinite or the thickness is negative or not finite.
+void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
+
+/// The fast, safe CCD test: never misses a collision; decides uncertain cases with exact rational arithmetic.
+/// Expects finite coordinates (see validate_query); non-finite input is reported as a ConservativeHit at toi 0.
+[[nodiscard]] CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings = {});
+
+/// Slow exact reference (GMP rationals, thickness 0): true when the primitives touch or cross at some t in [0, 1].
+/// Throws std::invalid_argument on non-finite coordinates.
+[[nodiscard]] bool exact_collision_reference(const CcdQuery& query);
+
+/// Exact reference on rational coordinates: points[i] = {x, y, z} with each coordinate a pair of decimal integer strings
+/// {numerator, denominator}; point order as in the benchmark CSV (the four start points, then the four end points).
+[[nodiscard]] bool exact_collision_reference(PairKind kind,
+                                             const std::array<std::array<std::array<std::string, 2>, 3>, 8>& points);
+
+/// Algebraic non-penetration filter: true when the coplanarity cubic provably has no root in [0, 1] (its four Bernstein
+/// coefficients have one strict sign beyond their rounding-error bound). Disabled (always false) for thickness > 0.
+[[nodiscard]] bool nonpenetration_filter_culls(const CcdQuery& query, const CcdSettings& settings = {});
+
+/// Spatial linear projection filter: true when, along one of the paper's five directions (eq. 10), every point of one
+/// primitive lies farther than thickness beyond every point of the other at both t = 0 and t = 1.
+[[nodiscard]] bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings = {});
+
+/// Projection filter with extra directions (see ProjectionFilterOptions).
+[[nodiscard]] bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
+                                           const ProjectionFilterOptions& options);
+
+/// Both filters, cheaper first: true when either culls.
+[[nodiscard]] bool combined_filters_cull(const CcdQuery& query, const CcdSettings& settings = {});
+
+/// Runs one filter; true when it culls the pair.
+[[nodiscard]] bool filter_culls(CcdFilter filter, const CcdQuery& query, const CcdSettings& settings = {});
+
+/// Batched filtering for the detector: keep[i] = 1 when queries[i] survives `filter`, 0 when culled.
+/// keep is resized to queries.size(); returns the number kept.
+std::size_t filter_batch(const std::vector<CcdQuery>& queries, CcdFilter filter, const CcdSettings& settings,
+                         std::vector<std::uint8_t>& keep);
+
+/// Batched narrow phase: results[i] = continuous_collision(queries[i]) for queries with keep[i] != 0 (or all when keep
+/// is empty); culled queries get a Separated result. results is resized to queries.size(); returns the number of hits.
+std::size_t continuous_collision_batch(const std::vector<CcdQuery>& queries, const std::vector<std::uint8_t>& keep,
+                                       const CcdSettings& settings, std::vector<CcdResult>& results);
+
+}  // namespace clothcd::ccd

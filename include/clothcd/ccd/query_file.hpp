@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// Reader of the public CCD benchmark's query files (Wang et al. 2021, "A Large-Scale Benchmark and an Inclusion-Based
+/// Algorithm for Continuous Collision Detection"): CSV, 8 rows per query (the four points at t = 0, then at t = 1, in
+/// CcdQuery's order), each row "x_num,x_den,y_num,y_den,z_num,z_den[,truth]" with arbitrary-size integers and an
+/// optional 0/1 ground truth.
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "clothcd/ccd/ccd.hpp"
+
+namespace clothcd::ccd {
+
+/// Thrown for unreadable or malformed query files; what() is "<file>:<line>: <problem>" (or "<file>: <problem>").
+class QueryFileError : public std::runtime_error {
+ public:
+  /// Builds the message from the file, the 1-based line (0 = no line) and the problem.
+  QueryFileError(const std::string& file, std::size_t line, const std::string& problem)
+      : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + problem) {}
+};
+
+/// One coordinate as read: decimal integer strings, denominator non-zero (as in the file; not reduced).
+using RationalText = std::array<std::string, 2>;
+
+/// One query as read from a file.
+struct QueryRecord {
+  CcdQuery query;  ///< Coordinates rounded to the nearest double.
+  /// The exact coordinates: rational[i][d] for point i (0..7, start points then end points) and axis d.
+  std::array<std::array<RationalText, 3>, 8> rational;
+  bool exactly_representable = true;  ///< True when every coordinate equals its double exactly.
+  int truth = -1;                     ///< Ground truth: 1 colliding, 0 not, -1 absent.
+  std::string file;                   ///< File the query came from.
+  std::size_t line = 0;               ///< 1-based line of its first row.
+};
+
+/// The pair kind named by a `vertex-face` or `edge-edge` folder in path (the nearest one wins), if any.
+[[nodiscard]] std::optional<PairKind> pair_kind_from_path(const std::string& path);
+
+/// Reads one CSV file. kind: the pair kind, or nullopt to take it from the path (QueryFileError when it cannot).
+/// Throws QueryFileError on unreadable files, wrong column counts, non-integers, zero denominators, a ground truth other
+/// than 0/1 or differing within a query, and a row count not divisible by 8.
+[[nodiscard]] std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind = {});
+
+/// Reads a CSV file, or every *.csv file under a folder (recursively, in sorted path order); kind as above.
+[[nodiscard]] std::vector<QueryRecord> read_queries(const std::string& path, std::optional<PairKind> kind = {});
+
+}  // namespace clothcd::ccd

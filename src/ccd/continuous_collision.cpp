@@ -1,0 +1,400 @@
+// The fast, safe CCD narrow phase (section 2.2's coplanarity cubic, made exact-safe).
+//
+// Both pair kinds are one question: is the origin in conv W(t) for some t in [0, 1], with W = {v - f_i} (vertex-face)
+// or W = {a_i - b_j} (edge-edge), all linear in t (see exact_reference.cpp for why this is equivalent). The time range
+// is subdivided (left half first, so the first hit is the earliest); on each piece [t0, t1], with outward-rounded
+// interval arithmetic:
+//   - cleared when some coordinate of every W box has one strict sign (the origin is outside the boxes' hull), or
+//     when the Bernstein coefficients of D(t) = det(x1 - x0, x2 - x0, x3 - x0) on the piece have one strict sign
+//     (no coplanarity), or when in some axis projection every triangle of W has 2D cross products of both strict signs
+//     (the origin is outside every triangle, so outside conv W);
+//   - proven hit when D certainly changes sign over the piece (a coplanar instant exists) and, in some projection,
+//     one triangle of W has three 2D cross products of the same strict sign (a non-degenerate projected triangle with
+//     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
+//     then tightened to the first sub-piece where D is not certainly non-zero.
+// A piece left undecided at the maximum depth hands the whole query to the exact rational reference, so no collision
+// is ever missed. With thickness h > 0 a piece is cleared only when the distance provably stays above h (boxes beyond
+// h along an axis, or |D| > h |n| with n the face normal / edge cross product, which bounds the distance to the plane
+// or between the lines from below); an undecided leaf is reported as a ConservativeHit at its start time.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "ccd/exact_reference.hpp"
+#include "ccd/interval.hpp"
+#include "clothcd/ccd/ccd.hpp"
+
+namespace clothcd::ccd {
+
+namespace {
+
+using detail::certain_sign;
+using detail::Interval;
+
+constexpr int kMaxDepth = 16;           // thickness 0: pieces down to 2^-16 of the step before the exact fallback
+constexpr int kMaxThicknessDepth = 10;  // thickness > 0: conservative leaves of 2^-10 of the step
+constexpr int kToiBisections = 24;      // time-of-impact lower bound tightened to about 6e-8 of the step
+// Beyond this magnitude intermediate products could overflow; such queries go straight to the exact reference.
+constexpr double kMaxFastCoordinate = 0x1p100;
+
+struct IVec {
+  Interval c[3];
+};
+
+IVec operator-(const IVec& a, const IVec& b) { return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}}; }
+IVec hull(const IVec& a, const IVec& b) {
+  return {{detail::hull(a.c[0], b.c[0]), detail::hull(a.c[1], b.c[1]), detail::hull(a.c[2], b.c[2])}};
+}
+IVec cross(const IVec& a, const IVec& b) {
+  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
+}
+Interval dot(const IVec& a, const IVec& b) { return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2]; }
+Interval determinant(const IVec& a, const IVec& b, const IVec& c) { return dot(a, cross(b, c)); }
+
+using Positions = std::array<IVec, 4>;
+
+// Enclosures of the four points at time t (exact double).
+Positions positions_at(const CcdQuery& query, double t) {
+  Positions x;
+  for (int i = 0; i < 4; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      const double s = query.start[i][d];
+      const double e = query.end[i][d];
+      if (t == 0.0) {
+        x[i].c[d] = detail::exact(s);
+      } else if (t == 1.0) {
+        x[i].c[d] = detail::exact(e);
+      } else {
+        x[i].c[d] = detail::exact(s) + detail::exact(t) * (detail::exact(e) - detail::exact(s));
+      }
+    }
+  }
+  return x;
+}
+
+struct PointSet {
+  IVec w[4];
+  int count = 0;
+};
+
+PointSet difference_points(PairKind kind, const Positions& x) {
+  PointSet set;
+  if (kind == PairKind::VertexFace) {
+    for (int j = 1; j < 4; ++j) set.w[set.count++] = x[0] - x[j];
+  } else {
+    for (int i = 0; i < 2; ++i)
+      for (int j = 2; j < 4; ++j) set.w[set.count++] = x[i] - x[j];
+  }
+  return set;
+}
+
+// Bernstein coefficients of D on the piece whose end positions are x0 and x1.
+std::array<Interval, 4> bernstein_of_d(const Positions& x0, const Positions& x1) {
+  const IVec a0 = x0[1] - x0[0], b0 = x0[2] - x0[0], c0 = x0[3] - x0[0];
+  const IVec a1 = x1[1] - x1[0], b1 = x1[2] - x1[0], c1 = x1[3] - x1[0];
+  return {determinant(a0, b0, c0),
+          determinant(a1, b0, c0) + determinant(a0, b1, c0) + determinant(a0, b0, c1),
+          determinant(a1, b1, c0) + determinant(a1, b0, c1) + determinant(a0, b1, c1), determinant(a1, b1, c1)};
+}
+
+int common_strict_sign(const std::array<Interval, 4>& b) {
+  const int s = certain_sign(b[0]);
+  for (int i = 1; i < 4; ++i)
+    if (certain_sign(b[i]) != s) return 0;
+  return s;
+}
+
+bool boxes_exclude_origin(const PointSet& boxes, double margin) {
+  for (int d = 0; d < 3; ++d) {
+    bool all_above = true;
+    bool all_below = true;
+    for (int m = 0; m < boxes.count; ++m) {
+      all_above = all_above && boxes.w[m].c[d].lo > margin;
+      all_below = all_below && boxes.w[m].c[d].hi < -margin;
+    }
+    if (all_above || all_below) return true;
+  }
+  return false;
+}
+
+// Certain signs of the 2D cross products W[a] x W[b] (a < b) in the projection dropping axis k.
+struct ProjectedSigns {
+  int cross[4][4] = {};
+};
+
+ProjectedSigns projected_signs(const PointSet& boxes, int k) {
+  const int u = (k + 1) % 3;
+  const int v = (k + 2) % 3;
+  ProjectedSigns signs;
+  for (int a = 0; a < boxes.count; ++a) {
+    for (int b = a + 1; b < boxes.count; ++b) {
+      const int s = certain_sign(boxes.w[a].c[u] * boxes.w[b].c[v] - boxes.w[a].c[v] * boxes.w[b].c[u]);
+      signs.cross[a][b] = s;
+      signs.cross[b][a] = -s;
+    }
+  }
+  return signs;
+}
+
+enum class TriangleVerdict { Outside, Inside, Unknown };
+
+TriangleVerdict classify_triangle(const ProjectedSigns& signs, int a, int b, int c) {
+  const int s[3] = {signs.cross[a][b], signs.cross[b][c], signs.cross[c][a]};
+  const bool positive = s[0] > 0 || s[1] > 0 || s[2] > 0;
+  const bool negative = s[0] < 0 || s[1] < 0 || s[2] < 0;
+  if (positive && negative) return TriangleVerdict::Outside;
+  if (s[0] != 0 && s[0] == s[1] && s[1] == s[2]) return TriangleVerdict::Inside;
+  return TriangleVerdict::Unknown;
+}
+
+struct ProjectionVerdict {
+  bool all_outside = false;  // in some projection, the origin is certainly outside every triangle
+  bool one_inside = false;   // in some projection, the origin is certainly strictly inside one triangle
+};
+
+ProjectionVerdict classify_projections(const PointSet& boxes) {
+  ProjectionVerdict verdict;
+  for (int k = 0; k < 3; ++k) {
+    const ProjectedSigns signs = projected_signs(boxes, k);
+    bool all_outside = true;
+    for (int a = 0; a < boxes.count; ++a) {
+      for (int b = a + 1; b < boxes.count; ++b) {
+        for (int c = b + 1; c < boxes.count; ++c) {
+          const TriangleVerdict t = classify_triangle(signs, a, b, c);
+          all_outside = all_outside && t == TriangleVerdict::Outside;
+          verdict.one_inside = verdict.one_inside || t == TriangleVerdict::Inside;
+        }
+      }
+    }
+    verdict.all_outside = verdict.all_outside || all_outside;
+  }
+  return verdict;
+}
+
+enum class PieceOutcome { Clear, Hit, Undecided };
+
+struct Search {
+  const CcdQuery& query;
+  double thickness = 0.0;
+  double toi = 1.0;
+};
+
+// Lower bound of the first root of D in [t0, t1]: the start of the first sub-piece where D is not certainly non-zero.
+double first_root_lower_bound(const Search& search, double t0, double t1, const Positions& x0, const Positions& x1) {
+  Positions lo = x0;
+  Positions hi = x1;
+  for (int i = 0; i < kToiBisections; ++i) {
+    const double mid = 0.5 * (t0 + t1);
+    if (!(mid > t0 && mid < t1)) break;
+    const Positions xm = positions_at(search.query, mid);
+    if (common_strict_sign(bernstein_of_d(lo, xm)) != 0) {
+      t0 = mid;
+      lo = xm;
+    } else {
+      t1 = mid;
+      hi = xm;
+    }
+  }
+  return t0;
+}
+
+PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Positions& x0, const Positions& x1,
+                                  int depth) {
+  const PairKind kind = search.query.kind;
+  const PointSet w0 = difference_points(kind, x0);
+  const PointSet w1 = difference_points(kind, x1);
+  PointSet boxes;
+  boxes.count = w0.count;
+  for (int m = 0; m < w0.count; ++m) boxes.w[m] = hull(w0.w[m], w1.w[m]);
+  if (boxes_exclude_origin(boxes, 0.0)) return PieceOutcome::Clear;
+  const std::array<Interval, 4> bernstein = bernstein_of_d(x0, x1);
+  if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
+  const ProjectionVerdict verdict = classify_projections(boxes);
+  if (verdict.all_outside) return PieceOutcome::Clear;
+  const int sign_start = certain_sign(bernstein[0]);
+  const int sign_end = certain_sign(bernstein[3]);
+  if (verdict.one_inside && sign_start != 0 && sign_end == -sign_start) {
+    search.toi = first_root_lower_bound(search, t0, t1, x0, x1);
+    return PieceOutcome::Hit;
+  }
+  const double mid = 0.5 * (t0 + t1);
+  if (depth >= kMaxDepth || !(mid > t0 && mid < t1)) return PieceOutcome::Undecided;
+  const Positions xm = positions_at(search.query, mid);
+  const PieceOutcome left = search_exact_contact(search, t0, mid, x0, xm, depth + 1);
+  if (left != PieceOutcome::Clear) return left;
+  return search_exact_contact(search, mid, t1, xm, x1, depth + 1);
+}
+
+// Upper bound of |n| over the piece, n the face normal (vertex-face) or the edge cross product (edge-edge).
+double normal_length_upper_bound(PairKind kind, const Positions& x0, const Positions& x1) {
+  Positions box;
+  for (int i = 0; i < 4; ++i) box[i] = hull(x0[i], x1[i]);
+  const IVec n = kind == PairKind::VertexFace ? cross(box[2] - box[1], box[3] - box[1])
+                                              : cross(box[1] - box[0], box[3] - box[2]);
+  return detail::round_up(std::sqrt(detail::round_up(dot(n, n).hi)));
+}
+
+PieceOutcome search_thick_contact(Search& search, double t0, double t1, const Positions& x0, const Positions& x1,
+                                  int depth) {
+  const PairKind kind = search.query.kind;
+  const PointSet w0 = difference_points(kind, x0);
+  const PointSet w1 = difference_points(kind, x1);
+  PointSet boxes;
+  boxes.count = w0.count;
+  for (int m = 0; m < w0.count; ++m) boxes.w[m] = hull(w0.w[m], w1.w[m]);
+  if (boxes_exclude_origin(boxes, search.thickness)) return PieceOutcome::Clear;
+  const std::array<Interval, 4> bernstein = bernstein_of_d(x0, x1);
+  const int sign = common_strict_sign(bernstein);
+  if (sign != 0) {
+    const double limit = detail::round_up(search.thickness * normal_length_upper_bound(kind, x0, x1));
+    bool beyond = true;
+    for (const Interval& b : bernstein) beyond = beyond && (sign > 0 ? b.lo > limit : b.hi < -limit);
+    if (beyond) return PieceOutcome::Clear;
+  }
+  const double mid = 0.5 * (t0 + t1);
+  if (depth >= kMaxThicknessDepth || !(mid > t0 && mid < t1)) {
+    search.toi = t0;
+    return PieceOutcome::Hit;
+  }
+  const Positions xm = positions_at(search.query, mid);
+  const PieceOutcome left = search_thick_contact(search, t0, mid, x0, xm, depth + 1);
+  if (left != PieceOutcome::Clear) return left;
+  return search_thick_contact(search, mid, t1, xm, x1, depth + 1);
+}
+
+exact::RationalPoints rational_points(const CcdQuery& query) {
+  exact::RationalPoints points;
+  for (int i = 0; i < 4; ++i) {
+    for (int d = 0; d < 3; ++d) {
+      points[i][d] = mpq_class(query.start[i][d]);
+      points[i + 4][d] = mpq_class(query.end[i][d]);
+    }
+  }
+  return points;
+}
+
+bool fits_fast_path(const CcdQuery& query) {
+  for (int i = 0; i < 4; ++i)
+    if (!(query.start[i].cwiseAbs().maxCoeff() <= kMaxFastCoordinate) ||
+        !(query.end[i].cwiseAbs().maxCoeff() <= kMaxFastCoordinate))
+      return false;
+  return true;
+}
+
+bool all_finite(const CcdQuery& query) {
+  for (int i = 0; i < 4; ++i)
+    if (!query.start[i].allFinite() || !query.end[i].allFinite()) return false;
+  return true;
+}
+
+// Approximate contact parameters and unit normal at time t (from the second primitive towards the first).
+void fill_contact_geometry(const CcdQuery& query, CcdResult& result) {
+  std::array<Eigen::Vector3d, 4> x;
+  for (int i = 0; i < 4; ++i) x[i] = query.start[i] + result.toi * (query.end[i] - query.start[i]);
+  Eigen::Vector3d normal;
+  Eigen::Vector3d towards_first;
+  if (query.kind == PairKind::VertexFace) {
+    const Eigen::Vector3d e1 = x[2] - x[1];
+    const Eigen::Vector3d e2 = x[3] - x[1];
+    const Eigen::Vector3d r = x[0] - x[1];
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (det > 0.0) {
+      const double w1 = (d22 * e1.dot(r) - d12 * e2.dot(r)) / det;
+      const double w2 = (d11 * e2.dot(r) - d12 * e1.dot(r)) / det;
+      result.parameters = {w1, w2};
+    }
+    normal = e1.cross(e2);
+    towards_first = query.start[0] - query.start[1];
+  } else {
+    const Eigen::Vector3d da = x[1] - x[0];
+    const Eigen::Vector3d db = x[3] - x[2];
+    const Eigen::Vector3d r = x[0] - x[2];
+    const double a = da.dot(da), b = da.dot(db), c = db.dot(db), d = da.dot(r), e = db.dot(r);
+    const double det = a * c - b * b;
+    if (det > 0.0) {
+      const double s = std::clamp((b * e - c * d) / det, 0.0, 1.0);
+      const double u = std::clamp((a * e - b * d) / det, 0.0, 1.0);
+      result.parameters = {s, u};
+    }
+    normal = da.cross(db);
+    towards_first = (query.start[0] + query.start[1]) - (query.start[2] + query.start[3]);
+  }
+  const double length = normal.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return;
+  normal /= length;
+  result.normal = normal.dot(towards_first) < 0.0 ? -normal : normal;
+}
+
+CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
+  CcdResult result;
+  result.hit = true;
+  result.toi = toi;
+  result.state = state;
+  fill_contact_geometry(query, result);
+  return result;
+}
+
+CcdResult contact_without_thickness(const CcdQuery& query) {
+  if (nonpenetration_filter_culls(query)) return CcdResult{};
+  if (fits_fast_path(query)) {
+    Search search{query, 0.0, 1.0};
+    const PieceOutcome outcome =
+        search_exact_contact(search, 0.0, 1.0, positions_at(query, 0.0), positions_at(query, 1.0), 0);
+    if (outcome == PieceOutcome::Clear) return CcdResult{};
+    if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
+  }
+  const exact::ExactAnswer answer = exact::exact_collision(query.kind, rational_points(query));
+  return answer.hit ? make_hit(query, answer.toi, CcdState::Hit) : CcdResult{};
+}
+
+}  // namespace
+
+void validate_query(const CcdQuery& query, const CcdSettings& settings) {
+  if (!all_finite(query)) throw std::invalid_argument("CCD query has a NaN or infinite coordinate");
+  if (!std::isfinite(settings.thickness) || settings.thickness < 0.0)
+    throw std::invalid_argument("CCD thickness must be finite and >= 0, got " + std::to_string(settings.thickness));
+}
+
+CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings) {
+  if (!all_finite(query) || !(settings.thickness >= 0.0) || !std::isfinite(settings.thickness)) {
+    CcdResult result;
+    result.hit = true;
+    result.toi = 0.0;
+    result.state = CcdState::ConservativeHit;
+    return result;
+  }
+  if (settings.thickness == 0.0) return contact_without_thickness(query);
+  if (projection_filter_culls(query, settings)) return CcdResult{};
+  Search search{query, settings.thickness, 1.0};
+  if (!fits_fast_path(query) ||
+      search_thick_contact(search, 0.0, 1.0, positions_at(query, 0.0), positions_at(query, 1.0), 0) !=
+          PieceOutcome::Clear) {
+    const double toi = fits_fast_path(query) ? search.toi : 0.0;
+    const CcdResult touching = contact_without_thickness(query);
+    return make_hit(query, std::min(toi, touching.toi), touching.hit ? CcdState::Hit : CcdState::ConservativeHit);
+  }
+  return CcdResult{};
+}
+
+bool exact_collision_reference(const CcdQuery& query) {
+  validate_query(query);
+  return exact::exact_collision(query.kind, rational_points(query)).hit;
+}
+
+std::size_t continuous_collision_batch(const std::vector<CcdQuery>& queries, const std::vector<std::uint8_t>& keep,
+                                       const CcdSettings& settings, std::vector<CcdResult>& results) {
+  if (!keep.empty() && keep.size() != queries.size())
+    throw std::invalid_argument("continuous_collision_batch: keep has " + std::to_string(keep.size()) +
+                                " entries for " + std::to_string(queries.size()) + " queries");
+  results.resize(queries.size());
+  std::size_t hits = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    results[i] = keep.empty() || keep[i] ? continuous_collision(queries[i], settings) : CcdResult{};
+    hits += results[i].hit ? 1 : 0;
+  }
+  return hits;
+}
+
+}  // namespace clothcd::ccd

@@ -1,0 +1,218 @@
+// Exact rational polynomial arithmetic for the CCD reference: Euclid's gcd, square-free parts, Sturm's theorem
+// (number of distinct roots in an interval = sign variations at lo minus at hi), bisection root isolation and the sign
+// of a polynomial at a real algebraic number (decided by a common-factor test, else by an isolating interval free of
+// the polynomial's roots).
+#include "ccd/exact_polynomial.hpp"
+
+#include <cassert>
+#include <utility>
+
+namespace clothcd::ccd::exact {
+
+namespace {
+
+Polynomial trimmed(Polynomial p) {
+  while (!p.c.empty() && p.c.back() == 0) p.c.pop_back();
+  return p;
+}
+
+Polynomial derivative(const Polynomial& p) {
+  Polynomial d;
+  for (std::size_t i = 1; i < p.c.size(); ++i) d.c.push_back(p.c[i] * static_cast<long>(i));
+  return trimmed(std::move(d));
+}
+
+// Quotient and remainder of p / q (q non-zero).
+std::pair<Polynomial, Polynomial> divide(const Polynomial& p, const Polynomial& q) {
+  assert(!is_zero(q));
+  Polynomial r = p;
+  Polynomial quotient;
+  const int dq = degree(q);
+  if (degree(r) >= dq) quotient.c.assign(static_cast<std::size_t>(degree(r) - dq + 1), mpq_class(0));
+  while (!is_zero(r) && degree(r) >= dq) {
+    const int shift = degree(r) - dq;
+    const mpq_class factor = r.c.back() / q.c.back();
+    quotient.c[static_cast<std::size_t>(shift)] = factor;
+    for (int i = 0; i <= dq; ++i) r.c[static_cast<std::size_t>(i + shift)] -= factor * q.c[static_cast<std::size_t>(i)];
+    r.c.pop_back();  // the leading coefficient cancels exactly
+    r = trimmed(std::move(r));
+  }
+  return {trimmed(std::move(quotient)), r};
+}
+
+int sign_variations(const std::vector<Polynomial>& sequence, const mpq_class& t) {
+  int variations = 0;
+  int previous = 0;
+  for (const Polynomial& p : sequence) {
+    const int s = sign_at(p, t);
+    if (s == 0) continue;
+    if (previous != 0 && s != previous) ++variations;
+    previous = s;
+  }
+  return variations;
+}
+
+std::vector<Polynomial> sturm_sequence(const Polynomial& p) {
+  std::vector<Polynomial> sequence{p, derivative(p)};
+  while (!is_zero(sequence.back())) {
+    const Polynomial remainder = divide(sequence[sequence.size() - 2], sequence.back()).second;
+    if (is_zero(remainder)) break;
+    sequence.push_back(constant(0) - remainder);
+  }
+  return sequence;
+}
+
+void isolate(const Polynomial& p, const mpq_class& lo, const mpq_class& hi, std::vector<AlgebraicPoint>& out) {
+  const int n = count_roots(p, lo, hi);
+  if (n == 0) return;
+  if (n == 1) {
+    out.push_back(AlgebraicPoint{false, mpq_class(0), p, lo, hi});
+    return;
+  }
+  const mpq_class mid = (lo + hi) / 2;
+  if (sign_at(p, mid) == 0) {
+    // Deflate the rational root so that mid is no longer a root of the polynomial isolated on either side.
+    const Polynomial deflated = divide(p, linear(-mid, 1)).first;
+    isolate(deflated, lo, mid, out);
+    out.push_back(AlgebraicPoint{true, mid, {}, mid, mid});
+    isolate(deflated, mid, hi, out);
+    return;
+  }
+  isolate(p, lo, mid, out);
+  isolate(p, mid, hi, out);
+}
+
+// True when the interval of `point` holds a root of the square-free f other than the point itself.
+bool interval_has_foreign_root(const AlgebraicPoint& point, const Polynomial& f_square_free) {
+  if (sign_at(f_square_free, point.lo) == 0 || sign_at(f_square_free, point.hi) == 0) return true;
+  const Polynomial common = gcd(point.poly, f_square_free);
+  // common divides the square-free poly, so its roots in (lo, hi) are at most the point itself, and simple.
+  const bool shares_point = degree(common) >= 1 && sign_at(common, point.lo) * sign_at(common, point.hi) < 0;
+  return count_roots(f_square_free, point.lo, point.hi) != (shares_point ? 1 : 0);
+}
+
+void bisect(AlgebraicPoint& point) {
+  const mpq_class mid = (point.lo + point.hi) / 2;
+  const int s_mid = sign_at(point.poly, mid);
+  if (s_mid == 0) {
+    point.is_rational = true;
+    point.value = mid;
+    point.lo = point.hi = mid;
+    return;
+  }
+  if (s_mid == sign_at(point.poly, point.lo)) {
+    point.lo = mid;
+  } else {
+    point.hi = mid;
+  }
+}
+
+}  // namespace
+
+Polynomial constant(const mpq_class& value) { return trimmed(Polynomial{{value}}); }
+
+Polynomial linear(const mpq_class& a, const mpq_class& b) { return trimmed(Polynomial{{a, b}}); }
+
+Polynomial operator+(const Polynomial& p, const Polynomial& q) {
+  Polynomial r;
+  r.c.assign(std::max(p.c.size(), q.c.size()), mpq_class(0));
+  for (std::size_t i = 0; i < p.c.size(); ++i) r.c[i] += p.c[i];
+  for (std::size_t i = 0; i < q.c.size(); ++i) r.c[i] += q.c[i];
+  return trimmed(std::move(r));
+}
+
+Polynomial operator-(const Polynomial& p, const Polynomial& q) {
+  Polynomial r;
+  r.c.assign(std::max(p.c.size(), q.c.size()), mpq_class(0));
+  for (std::size_t i = 0; i < p.c.size(); ++i) r.c[i] += p.c[i];
+  for (std::size_t i = 0; i < q.c.size(); ++i) r.c[i] -= q.c[i];
+  return trimmed(std::move(r));
+}
+
+Polynomial operator*(const Polynomial& p, const Polynomial& q) {
+  if (is_zero(p) || is_zero(q)) return {};
+  Polynomial r;
+  r.c.assign(p.c.size() + q.c.size() - 1, mpq_class(0));
+  for (std::size_t i = 0; i < p.c.size(); ++i)
+    for (std::size_t j = 0; j < q.c.size(); ++j) r.c[i + j] += p.c[i] * q.c[j];
+  return trimmed(std::move(r));
+}
+
+int degree(const Polynomial& p) { return static_cast<int>(p.c.size()) - 1; }
+
+bool is_zero(const Polynomial& p) { return p.c.empty(); }
+
+mpq_class evaluate(const Polynomial& p, const mpq_class& t) {
+  mpq_class value = 0;
+  for (std::size_t i = p.c.size(); i-- > 0;) value = value * t + p.c[i];
+  return value;
+}
+
+int sign_at(const Polynomial& p, const mpq_class& t) { return sgn(evaluate(p, t)); }
+
+Polynomial square_free(const Polynomial& p) {
+  assert(!is_zero(p));
+  const Polynomial g = gcd(p, derivative(p));
+  if (degree(g) <= 0) return p;
+  return divide(p, g).first;
+}
+
+int count_roots(const Polynomial& p, const mpq_class& lo, const mpq_class& hi) {
+  if (degree(p) <= 0) return 0;
+  const std::vector<Polynomial> sequence = sturm_sequence(p);
+  return sign_variations(sequence, lo) - sign_variations(sequence, hi);
+}
+
+Polynomial gcd(const Polynomial& p, const Polynomial& q) {
+  Polynomial a = p;
+  Polynomial b = q;
+  while (!is_zero(b)) {
+    Polynomial r = divide(a, b).second;
+    a = std::move(b);
+    b = std::move(r);
+  }
+  if (is_zero(a)) return a;
+  const mpq_class lead = a.c.back();
+  for (mpq_class& coefficient : a.c) coefficient /= lead;
+  return a;
+}
+
+std::vector<AlgebraicPoint> roots_in_unit_interval(const Polynomial& p) {
+  assert(!is_zero(p));
+  std::vector<AlgebraicPoint> roots;
+  Polynomial f = square_free(p);
+  const bool root_at_0 = sign_at(f, 0) == 0;
+  const bool root_at_1 = sign_at(f, 1) == 0;
+  if (root_at_0) f = divide(f, linear(0, 1)).first;
+  if (root_at_1) f = divide(f, linear(-1, 1)).first;
+  if (root_at_0) roots.push_back(AlgebraicPoint{true, mpq_class(0), {}, mpq_class(0), mpq_class(0)});
+  isolate(f, 0, 1, roots);
+  if (root_at_1) roots.push_back(AlgebraicPoint{true, mpq_class(1), {}, mpq_class(1), mpq_class(1)});
+  return roots;
+}
+
+void isolate_from(AlgebraicPoint& point, const std::vector<Polynomial>& others) {
+  std::vector<Polynomial> square_free_others;
+  for (const Polynomial& f : others)
+    if (degree(f) >= 1) square_free_others.push_back(square_free(f));
+  for (bool clean = false; !clean && !point.is_rational;) {
+    clean = true;
+    for (const Polynomial& f : square_free_others) {
+      if (interval_has_foreign_root(point, f)) {
+        clean = false;
+        bisect(point);
+        break;
+      }
+    }
+  }
+}
+
+int sign_at(const AlgebraicPoint& point, const Polynomial& p) {
+  if (point.is_rational) return sign_at(p, point.value);
+  if (degree(p) <= 0) return is_zero(p) ? 0 : sgn(p.c[0]);
+  const Polynomial common = gcd(point.poly, square_free(p));
+  if (degree(common) >= 1 && sign_at(common, point.lo) * sign_at(common, point.hi) < 0) return 0;
+  return sign_at(p, point.lo);
+}
+
+}  // namespace clothcd::ccd::exact

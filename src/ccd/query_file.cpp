@@ -1,0 +1,171 @@
+// Reader of the CCD benchmark's rational CSV query files (Wang et al. 2021). Integers are parsed with GMP (they exceed
+// 64 bits); each rational is rounded to the nearest double by comparing the neighbours of GMP's truncated value.
+#include "clothcd/ccd/query_file.hpp"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace clothcd::ccd {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  const auto last = text.find_last_not_of(" \t\r");
+  return text.substr(first, last - first + 1);
+}
+
+std::vector<std::string> split_columns(const std::string& line) {
+  std::vector<std::string> columns;
+  std::size_t begin = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', begin);
+    columns.push_back(trim(line.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin)));
+    if (comma == std::string::npos) return columns;
+    begin = comma + 1;
+  }
+}
+
+bool is_integer(const std::string& text) {
+  const std::size_t digits_start = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+  if (text.size() <= digits_start) return false;
+  return std::all_of(text.begin() + static_cast<std::ptrdiff_t>(digits_start), text.end(),
+                     [](char c) { return c >= '0' && c <= '9'; });
+}
+
+mpz_class parse_integer(const std::string& text) {
+  return mpz_class(text[0] == '+' ? text.substr(1) : text, 10);
+}
+
+double nearest_double(const mpq_class& q) {
+  const double truncated = q.get_d();
+  double best = truncated;
+  mpq_class best_error = abs(mpq_class(truncated) - q);
+  for (double candidate : {std::nextafter(truncated, -std::numeric_limits<double>::infinity()),
+                           std::nextafter(truncated, std::numeric_limits<double>::infinity())}) {
+    if (!std::isfinite(candidate)) continue;
+    const mpq_class error = abs(mpq_class(candidate) - q);
+    if (error < best_error) {
+      best = candidate;
+      best_error = error;
+    }
+  }
+  return best;
+}
+
+struct Row {
+  std::array<RationalText, 3> text;
+  Eigen::Vector3d value;
+  bool exact = true;
+  int truth = -1;
+  std::size_t line = 0;
+};
+
+Row parse_row(const std::string& file, std::size_t line_number, const std::string& line) {
+  const std::vector<std::string> columns = split_columns(line);
+  if (columns.size() != 6 && columns.size() != 7)
+    throw QueryFileError(file, line_number,
+                         "expected 6 or 7 comma-separated integers, found " + std::to_string(columns.size()) +
+                             " columns");
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (!is_integer(columns[c]))
+      throw QueryFileError(file, line_number, "column " + std::to_string(c + 1) + " is not an integer: '" +
+                                                  columns[c] + "'");
+  Row row;
+  row.line = line_number;
+  for (int d = 0; d < 3; ++d) {
+    const mpz_class numerator = parse_integer(columns[2 * d]);
+    const mpz_class denominator = parse_integer(columns[2 * d + 1]);
+    if (denominator == 0)
+      throw QueryFileError(file, line_number, "zero denominator in column " + std::to_string(2 * d + 2));
+    mpq_class q(numerator, denominator);
+    q.canonicalize();
+    row.text[d] = {numerator.get_str(), denominator.get_str()};
+    row.value[d] = nearest_double(q);
+    row.exact = row.exact && mpq_class(row.value[d]) == q;
+  }
+  if (columns.size() == 7) {
+    if (columns[6] != "0" && columns[6] != "1")
+      throw QueryFileError(file, line_number, "ground truth (column 7) must be 0 or 1, got '" + columns[6] + "'");
+    row.truth = columns[6] == "1" ? 1 : 0;
+  }
+  return row;
+}
+
+QueryRecord make_record(const std::string& file, PairKind kind, const std::vector<Row>& rows, std::size_t first) {
+  QueryRecord record;
+  record.query.kind = kind;
+  record.file = file;
+  record.line = rows[first].line;
+  record.truth = rows[first].truth;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const Row& row = rows[first + i];
+    if (row.truth != record.truth)
+      throw QueryFileError(file, row.line, "ground truth differs from the query's first row (line " +
+                                               std::to_string(record.line) + ")");
+    record.rational[i] = row.text;
+    record.exactly_representable = record.exactly_representable && row.exact;
+    (i < 4 ? record.query.start[i] : record.query.end[i - 4]) = row.value;
+  }
+  return record;
+}
+
+}  // namespace
+
+std::optional<PairKind> pair_kind_from_path(const std::string& path) {
+  const fs::path p(path);
+  std::optional<PairKind> kind;
+  for (const fs::path& part : p) {
+    if (part == "vertex-face") kind = PairKind::VertexFace;
+    if (part == "edge-edge") kind = PairKind::EdgeEdge;
+  }
+  return kind;
+}
+
+std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind) {
+  if (!kind) kind = pair_kind_from_path(path);
+  if (!kind)
+    throw QueryFileError(path, 0, "pair type unknown: pass --type vf|ee or put the file under a vertex-face or edge-edge "
+                                  "folder");
+  std::ifstream in(path);
+  if (!in) throw QueryFileError(path, 0, "cannot open file");
+  std::vector<Row> rows;
+  std::string line;
+  for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
+    if (trim(line).empty()) continue;
+    rows.push_back(parse_row(path, line_number, line));
+  }
+  if (rows.size() % 8 != 0)
+    throw QueryFileError(path, 0, std::to_string(rows.size()) + " rows is not a multiple of 8 (8 rows per query)");
+  std::vector<QueryRecord> records;
+  records.reserve(rows.size() / 8);
+  for (std::size_t first = 0; first < rows.size(); first += 8) records.push_back(make_record(path, *kind, rows, first));
+  return records;
+}
+
+std::vector<QueryRecord> read_queries(const std::string& path, std::optional<PairKind> kind) {
+  std::error_code error;
+  if (!fs::exists(path, error)) throw QueryFileError(path, 0, "no such file or folder");
+  if (!fs::is_directory(path, error)) return read_query_file(path, kind);
+  std::vector<std::string> files;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(path))
+    if (entry.is_regular_file() && entry.path().extension() == ".csv") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw QueryFileError(path, 0, "folder holds no .csv query files");
+  std::vector<QueryRecord> records;
+  for (const std::string& file : files) {
+    std::vector<QueryRecord> part = read_query_file(file, kind);
+    records.insert(records.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
+  }
+  return records;
+}
+
+}  // namespace clothcd::ccd

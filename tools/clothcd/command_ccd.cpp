@@ -1,0 +1,174 @@
+// `clothcd ccd PATH`: runs the safe CCD (optionally behind a filter) on benchmark query files and prints one summary:
+// queries, collisions, false positives/negatives against the ground truth, culled pairs per filter, time per query.
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "clothcd/ccd/ccd.hpp"
+#include "clothcd/ccd/query_file.hpp"
+#include "commands.hpp"
+
+namespace clothcd::cli {
+
+namespace {
+
+struct CcdCommandOptions {
+  std::string path;
+  std::string type;
+  std::string filter = "none";
+  double thickness = 0.0;
+  bool json = false;
+  std::string per_query;
+};
+
+struct Summary {
+  std::size_t queries = 0;
+  std::size_t colliding = 0;
+  std::size_t with_truth = 0;
+  std::size_t truth_colliding = 0;
+  std::size_t false_positives = 0;
+  std::size_t false_negatives = 0;
+  std::size_t conservative = 0;
+  std::size_t inexact_coordinates = 0;
+  std::size_t culled_selected = 0;
+  std::size_t culled_nonpenetration = 0;
+  std::size_t culled_projection = 0;
+  std::size_t culled_combined = 0;
+  double ns_per_query = 0.0;
+};
+
+const char* state_name(ccd::CcdState state) {
+  switch (state) {
+    case ccd::CcdState::Separated:
+      return "separated";
+    case ccd::CcdState::Hit:
+      return "hit";
+    case ccd::CcdState::ConservativeHit:
+      return "conservative-hit";
+  }
+  return "?";
+}
+
+void print_summary(const CcdCommandOptions& options, const Summary& s) {
+  if (options.json) {
+    std::cout << "{\"path\": \"" << options.path << "\", \"filter\": \"" << options.filter
+              << "\", \"thickness\": " << options.thickness << ", \"queries\": " << s.queries
+              << ", \"colliding\": " << s.colliding << ", \"conservative\": " << s.conservative
+              << ", \"with_ground_truth\": " << s.with_truth << ", \"truth_colliding\": " << s.truth_colliding
+              << ", \"false_positives\": " << s.false_positives << ", \"false_negatives\": " << s.false_negatives
+              << ", \"inexact_coordinates\": " << s.inexact_coordinates << ", \"culled\": " << s.culled_selected
+              << ", \"culled_nonpenetration\": " << s.culled_nonpenetration
+              << ", \"culled_projection\": " << s.culled_projection << ", \"culled_combined\": " << s.culled_combined
+              << ", \"ns_per_query\": " << std::fixed << std::setprecision(1) << s.ns_per_query << "}\n";
+    return;
+  }
+  const auto percent = [&](std::size_t n) { return s.queries ? 100.0 * static_cast<double>(n) / s.queries : 0.0; };
+  std::cout << std::fixed << std::setprecision(1) << "path:                  " << options.path << '\n'
+            << "filter:                " << options.filter << "  (thickness " << options.thickness << ")\n"
+            << "queries:               " << s.queries << '\n'
+            << "colliding:             " << s.colliding << "  (" << s.conservative << " conservative)\n";
+  if (s.with_truth > 0) {
+    std::cout << "ground truth:          " << s.truth_colliding << " colliding of " << s.with_truth << '\n'
+              << "false positives:       " << s.false_positives << '\n'
+              << "false negatives:       " << s.false_negatives << '\n';
+  }
+  std::cout << "inexact coordinates:   " << s.inexact_coordinates << " queries (rounded to double)\n"
+            << "culled (selected):     " << s.culled_selected << "  (" << percent(s.culled_selected) << "%)\n"
+            << "culled nonpenetration: " << s.culled_nonpenetration << "  (" << percent(s.culled_nonpenetration)
+            << "%)\n"
+            << "culled projection:     " << s.culled_projection << "  (" << percent(s.culled_projection) << "%)\n"
+            << "culled combined:       " << s.culled_combined << "  (" << percent(s.culled_combined) << "%)\n"
+            << "ns per query:          " << s.ns_per_query << '\n';
+}
+
+ccd::CcdFilter parse_filter(const std::string& name) {
+  static const std::map<std::string, ccd::CcdFilter> kFilters{{"none", ccd::CcdFilter::None},
+                                                              {"nonpenetration", ccd::CcdFilter::NonPenetration},
+                                                              {"projection", ccd::CcdFilter::Projection},
+                                                              {"combined", ccd::CcdFilter::Combined}};
+  const auto found = kFilters.find(name);
+  if (found == kFilters.end())
+    throw std::invalid_argument("unknown --filter '" + name + "' (none, nonpenetration, projection, combined)");
+  return found->second;
+}
+
+void run_ccd(const CcdCommandOptions& options) {
+  const ccd::CcdFilter filter = parse_filter(options.filter);
+  std::optional<PairKind> kind;
+  if (options.type == "vf") kind = PairKind::VertexFace;
+  if (options.type == "ee") kind = PairKind::EdgeEdge;
+  if (!options.type.empty() && !kind) throw std::invalid_argument("unknown --type '" + options.type + "' (vf, ee)");
+  ccd::CcdSettings settings;
+  settings.thickness = options.thickness;
+  if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness))
+    throw std::invalid_argument("--thickness must be a finite number >= 0");
+
+  const std::vector<ccd::QueryRecord> records = ccd::read_queries(options.path, kind);
+  std::vector<ccd::CcdQuery> queries;
+  queries.reserve(records.size());
+  for (const ccd::QueryRecord& record : records) queries.push_back(record.query);
+
+  Summary summary;
+  summary.queries = queries.size();
+  std::vector<std::uint8_t> keep;
+  std::vector<ccd::CcdResult> results;
+  const auto begin = std::chrono::steady_clock::now();
+  ccd::filter_batch(queries, filter, settings, keep);
+  ccd::continuous_collision_batch(queries, keep, settings, results);
+  const auto elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count();
+  summary.ns_per_query = queries.empty() ? 0.0 : elapsed / static_cast<double>(queries.size());
+
+  std::ofstream per_query;
+  if (!options.per_query.empty()) {
+    per_query.open(options.per_query);
+    if (!per_query) throw std::runtime_error(options.per_query + ": cannot open for writing");
+    per_query << "file,line,kind,truth,hit,state,toi,culled\n" << std::setprecision(17);
+  }
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const ccd::QueryRecord& record = records[i];
+    const ccd::CcdResult& result = results[i];
+    summary.colliding += result.hit ? 1 : 0;
+    summary.conservative += result.state == ccd::CcdState::ConservativeHit ? 1 : 0;
+    summary.inexact_coordinates += record.exactly_representable ? 0 : 1;
+    summary.culled_selected += keep[i] ? 0 : 1;
+    summary.culled_nonpenetration += ccd::nonpenetration_filter_culls(record.query, settings) ? 1 : 0;
+    summary.culled_projection += ccd::projection_filter_culls(record.query, settings) ? 1 : 0;
+    summary.culled_combined += ccd::combined_filters_cull(record.query, settings) ? 1 : 0;
+    if (record.truth >= 0) {
+      ++summary.with_truth;
+      summary.truth_colliding += record.truth == 1 ? 1 : 0;
+      summary.false_positives += result.hit && record.truth == 0 ? 1 : 0;
+      summary.false_negatives += !result.hit && record.truth == 1 ? 1 : 0;
+    }
+    if (per_query.is_open())
+      per_query << record.file << ',' << record.line << ','
+                << (record.query.kind == PairKind::VertexFace ? "vf" : "ee") << ',' << record.truth << ','
+                << (result.hit ? 1 : 0) << ',' << state_name(result.state) << ',' << result.toi << ','
+                << (keep[i] ? 0 : 1) << '\n';
+  }
+  if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
+  print_summary(options, summary);
+}
+
+}  // namespace
+
+void add_ccd_command(CLI::App& app) {
+  auto* command = app.add_subcommand("ccd", "Continuous collision detection on benchmark query files (CSV, rational)");
+  auto options = std::make_shared<CcdCommandOptions>();
+  command->add_option("PATH", options->path, "Query CSV file or folder (searched recursively)")->required();
+  command->add_option("--type", options->type,
+                      "Pair type: vf or ee (default: from a vertex-face/edge-edge folder in the path)");
+  command->add_option("--filter", options->filter, "none, nonpenetration, projection or combined (default none)");
+  command->add_option("--thickness", options->thickness, "Minimum separation (>= 0, default 0)");
+  command->add_flag("--json", options->json, "Print the summary as one JSON object");
+  command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");
+  command->callback([options] { run_ccd(*options); });
+}
+
+}  // namespace clothcd::cli
