@@ -18,6 +18,7 @@ packages=(
   libmeshoptimizer-dev # benchmark peer: QEM simplification (linked into bench/ only)
   libcgal-dev          # benchmark peer: Garland-Heckbert simplification, optimal OBB (bench/ only)
   libfcl-dev           # benchmark peer: AABB/OBB BVH broad phase (bench/ only)
+  libqhull-dev         # convex hulls for the tight reference OBB and the simplified-model OBB (library)
 )
 
 missing=()

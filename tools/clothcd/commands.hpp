@@ -13,5 +13,9 @@ void add_convert_command(CLI::App& app);
 void add_meshes_command(CLI::App& app);
 /// Adds `clothcd ccd PATH [--type vf|ee] [--filter ...] [--thickness H] [--json] [--per-query FILE]`.
 void add_ccd_command(CLI::App& app);
+/// Adds `clothcd simplify IN OUT (--ratio R | --faces N) [--non-edge-threshold D] [--hausdorff]`.
+void add_simplify_command(CLI::App& app);
+/// Adds `clothcd obb MESH [--method ...] [--simplify R] [--json]`.
+void add_obb_command(CLI::App& app);
 
 }  // namespace clothcd::cli

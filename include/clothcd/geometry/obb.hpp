@@ -25,6 +25,18 @@ enum class ObbMethod {
 struct ObbSettings {
   int slabs = 16;               ///< (b), (c): slabs per axis (s of eq. 15); the extremes of each slab are kept.
   double simplify_ratio = 0.1;  ///< (c): fraction of the faces the simplified model keeps (0.1 = the paper's 90% simplified).
+  /// (b), (c): after the covariance axes, keep each axis in turn and re-choose the other two as the minimum-area
+  /// rectangle of the slab extremes S' projected on its orthogonal plane (two rounds, the smallest box wins). An addition
+  /// to the paper's method; false gives eqs. 11-18 exactly.
+  bool refine_axes = true;
+};
+
+/// Reusable buffers of the fast adaptive OBB (so per-step rebuilds allocate nothing once warm).
+struct ObbScratch {
+  std::vector<char> keep;                ///< #V flags of the slab extremes S'.
+  std::vector<Eigen::Vector3d> kept;     ///< The points of S'.
+  std::vector<Eigen::Vector2d> plane;    ///< S' projected on a plane.
+  std::vector<Eigen::Vector2d> hull;     ///< Its 2-D convex hull.
 };
 
 /// The box of `mesh` (vertices #V x 3, faces #F x 3) by `method`; axes right-handed, half extents >= 0.
@@ -41,9 +53,9 @@ struct ObbSettings {
 void grow_obb(Obb& box, const Vertices& points);
 
 /// (c) for a moving obstacle: simplifies the model ONCE, then rebuilds the box every step in O(simplified + hull) time.
-/// The box of update() is the fast adaptive OBB of the simplified model at `pose`, grown so that it contains every
-/// vertex of the original model's convex hull at `pose`; because an affine map sends the hull of the points to the hull of
-/// the mapped points, the box contains every original vertex at that pose.
+/// The box of update() takes its axes from the fast adaptive OBB of the simplified model at `pose` and its extents from
+/// the projections of the original model's convex-hull vertices at `pose`; because a rigid (indeed any affine) map sends
+/// the hull of the points to the hull of the mapped points, the box contains every original vertex at that pose.
 class SimplifiedObb {
  public:
   /// Simplifies `original` to `settings.simplify_ratio` of its faces (QEM) and records its convex-hull vertices.
@@ -68,7 +80,8 @@ class SimplifiedObb {
   std::vector<int> hull_indices_;
   ObbSettings settings_;
   TriangleMesh moved_;  // scratch: simplified model at the current pose
-  Vertices moved_hull_;
+  Vertices moved_hull_;  // scratch: hull vertices at the current pose
+  ObbScratch scratch_;
 };
 
 }  // namespace clothcd::geometry

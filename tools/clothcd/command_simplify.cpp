@@ -1,0 +1,59 @@
+// `clothcd simplify IN OUT (--ratio R | --faces N) [--non-edge-threshold D] [--max-error E] [--hausdorff]`: QEM
+// simplification (Garland & Heckbert) of a mesh file, with timing and optionally the Hausdorff distance to the input.
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "clothcd/geometry/hausdorff.hpp"
+#include "clothcd/geometry/simplify.hpp"
+#include "clothcd/mesh/mesh_io.hpp"
+#include "commands.hpp"
+
+namespace clothcd::cli {
+
+void add_simplify_command(CLI::App& app) {
+  auto* command = app.add_subcommand("simplify", "Simplify a mesh by quadric error metrics (QEM)");
+  auto in = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>();
+  auto settings = std::make_shared<geometry::SimplifySettings>();
+  auto hausdorff = std::make_shared<bool>(false);
+  command->add_option("IN", *in, "Input mesh file")->required();
+  command->add_option("OUT", *out, "Output file, .obj or .ply")->required();
+  auto* ratio = command->add_option("--ratio", settings->target_ratio,
+                                    "Fraction of the faces to keep, in (0, 1] (0.1 = the paper's 90% simplified)");
+  auto* faces = command->add_option("--faces", settings->target_faces, "Number of faces to keep")
+                    ->check(CLI::NonNegativeNumber);
+  auto* error = command->add_option("--max-error", settings->max_error,
+                                    "Never contract a pair whose error exceeds this distance (model units)")
+                    ->check(CLI::NonNegativeNumber);
+  ratio->excludes(faces);
+  command->add_option("--non-edge-threshold", settings->non_edge_threshold,
+                      "Also contract vertices closer than this distance that share no edge (model units)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--hausdorff", *hausdorff, "Print the two-sided sampled Hausdorff distance to the input");
+  command->callback([=] {
+    if (ratio->count() + faces->count() + error->count() == 0)
+      throw std::invalid_argument("simplify: give --ratio R or --faces N (or --max-error E)");
+    const TriangleMesh mesh = load_mesh(*in);
+    const auto start = std::chrono::steady_clock::now();
+    const geometry::SimplifyResult result = geometry::simplify_qem(mesh, *settings);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    save_mesh(result.mesh, *out);
+    std::cout << "faces:        " << result.faces_before << " -> " << result.faces_after
+              << (result.reached_target ? "" : "  (target not reached: no valid contraction left)") << '\n'
+              << "vertices:     " << mesh.vertex_count() << " -> " << result.mesh.vertex_count() << '\n'
+              << "time:         " << ms << " ms\n"
+              << "max error:    " << result.max_error << " (largest contraction error, model units)\n";
+    if (*hausdorff) {
+      const Eigen::Vector3d diagonal =
+          (mesh.vertices.colwise().maxCoeff() - mesh.vertices.colwise().minCoeff()).transpose();
+      const geometry::HausdorffResult h = geometry::measure_hausdorff(mesh, result.mesh);
+      std::cout << "hausdorff:    max " << h.max << " (" << 100.0 * h.max / diagonal.norm() << "% of bbox diagonal), mean "
+                << h.mean << " (" << 100.0 * h.mean / diagonal.norm() << "%)\n";
+    }
+    std::cout << "wrote " << *out << '\n';
+  });
+}
+
+}  // namespace clothcd::cli
