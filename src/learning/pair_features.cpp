@@ -1,0 +1,140 @@
+// Features of a CCD candidate pair for the pair network (Jin et al., section 3.3.1: 15 inputs, not named there).
+// They are built from what the paper's two filters look at, so that the network can learn their combined decision:
+// - the coplanarity cubic D(t) = (x1 - x0)(t) x (x2 - x0)(t) . (x3 - x0)(t) (eqs. 6-7) in Bernstein form on [0, 1]: the
+//   algebraic non-penetration filter removes a pair when all four coefficients have one strict sign (no root);
+// - the spatial linear projection filter (eqs. 8-10): along each of the paper's five directions s, the projected gaps
+//   between the two primitives at t = 0 and t = 1 all of one strict sign mean the projections never overlap.
+// Each filter test becomes a signed margin (positive exactly when the filter removes the pair), scaled by the pair
+// size L = diagonal of the box around the eight positions; datasets/README.md documents every feature.
+#include "clothcd/learning/pair_features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+
+namespace clothcd::learning {
+namespace {
+
+const char* const kFeatureNames[kMaxPairFeatures] = {
+    "algebraic_margin", "projection_margin",  "projection_s1", "projection_s2", "projection_s3", "projection_s4",
+    "projection_s5",    "bernstein_b0",       "bernstein_b1",  "bernstein_b2",  "bernstein_b3",  "relative_motion",
+    "gap_start",        "gap_end",            "is_edge_edge",  "area_start",    "area_end"};
+
+// The paper's projection directions (eq. 10).
+const Eigen::Vector3d kDirections[5] = {
+    Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(std::sqrt(0.5), std::sqrt(0.5), 0.0),
+    Eigen::Vector3d(std::sqrt(0.5), 0.0, std::sqrt(0.5)), Eigen::Vector3d(0.0, std::sqrt(0.5), std::sqrt(0.5)),
+    Eigen::Vector3d(std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0))};
+
+// Signed margin of "all values have one strict sign": min when all positive, -max when all negative, else <= 0.
+double same_sign_margin(const double* values, int count) {
+  const auto [lo, hi] = std::minmax_element(values, values + count);
+  return std::max(*lo, -*hi);
+}
+
+// Bernstein coefficients of D(t) on [0, 1] from the power-basis coefficients of the triple product.
+std::array<double, 4> coplanarity_bernstein(const PairGeometry& pair) {
+  const Eigen::Vector3d a1 = pair.start[1] - pair.start[0], a2 = pair.start[2] - pair.start[0],
+                        a3 = pair.start[3] - pair.start[0];
+  const Eigen::Vector3d v1 = (pair.end[1] - pair.end[0]) - a1, v2 = (pair.end[2] - pair.end[0]) - a2,
+                        v3 = (pair.end[3] - pair.end[0]) - a3;
+  const double c0 = a1.cross(a2).dot(a3);
+  const double c1 = v1.cross(a2).dot(a3) + a1.cross(v2).dot(a3) + a1.cross(a2).dot(v3);
+  const double c2 = v1.cross(v2).dot(a3) + v1.cross(a2).dot(v3) + a1.cross(v2).dot(v3);
+  const double c3 = v1.cross(v2).dot(v3);
+  return {c0, c0 + c1 / 3.0, c0 + (2.0 * c1 + c2) / 3.0, c0 + c1 + c2 + c3};
+}
+
+// Projected gaps of eq. 8 (vertex-face: vertex minus each triangle corner) or eq. 9 (edge-edge: each end of one edge
+// minus each end of the other), at t = 0 and t = 1, along direction s; returns their count.
+int projected_gaps(const PairGeometry& pair, const Eigen::Vector3d& s, double* gaps) {
+  int n = 0;
+  for (const auto* positions : {&pair.start, &pair.end}) {
+    const auto& x = *positions;
+    if (pair.type == PairType::VertexFace) {
+      for (int k = 1; k < 4; ++k) gaps[n++] = (x[0] - x[k]).dot(s);
+    } else {
+      for (int a = 0; a < 2; ++a)
+        for (int b = 2; b < 4; ++b) gaps[n++] = (x[a] - x[b]).dot(s);
+    }
+  }
+  return n;
+}
+
+// Distance between the centres of the two primitives (vertex vs triangle centroid, edge midpoint vs edge midpoint).
+double centre_gap(PairType type, const std::array<Eigen::Vector3d, 4>& x) {
+  if (type == PairType::VertexFace) return (x[0] - (x[1] + x[2] + x[3]) / 3.0).norm();
+  return (0.5 * (x[0] + x[1]) - 0.5 * (x[2] + x[3])).norm();
+}
+
+// Area of the triangle (vertex-face) or of the parallelogram spanned by the two edges (edge-edge: zero when parallel).
+double primitive_area(PairType type, const std::array<Eigen::Vector3d, 4>& x) {
+  if (type == PairType::VertexFace) return 0.5 * (x[2] - x[1]).cross(x[3] - x[1]).norm();
+  return (x[1] - x[0]).cross(x[3] - x[2]).norm();
+}
+
+double pair_size(const PairGeometry& pair) {
+  Eigen::Vector3d lo = pair.start[0], hi = pair.start[0];
+  for (int k = 0; k < 4; ++k) {
+    lo = lo.cwiseMin(pair.start[k]).cwiseMin(pair.end[k]);
+    hi = hi.cwiseMax(pair.start[k]).cwiseMax(pair.end[k]);
+  }
+  return (hi - lo).norm();
+}
+
+}  // namespace
+
+const char* pair_type_name(PairType type) { return type == PairType::VertexFace ? "VF" : "EE"; }
+
+std::vector<std::string> pair_feature_names(const FeatureSettings& settings) {
+  if (settings.count < 1 || settings.count > kMaxPairFeatures)
+    throw std::invalid_argument("feature count " + std::to_string(settings.count) + " is outside 1.." +
+                                std::to_string(kMaxPairFeatures));
+  return std::vector<std::string>(kFeatureNames, kFeatureNames + settings.count);
+}
+
+void compute_pair_features(const PairGeometry& pair, const FeatureSettings& settings, double* out) {
+  double all[kMaxPairFeatures] = {};
+  const double size = pair_size(pair);
+  // A pair of zero size cannot be scaled; all-zero features say "no margin", so the network cannot be sure to drop it.
+  if (size > 0.0 || !std::isfinite(size)) {
+    const double length_scale = 1.0 / size, volume_scale = length_scale * length_scale * length_scale;
+    const std::array<double, 4> bernstein = coplanarity_bernstein(pair);
+    all[0] = same_sign_margin(bernstein.data(), 4) * volume_scale;
+    double best_projection = -1.0;
+    for (int d = 0; d < 5; ++d) {
+      double gaps[8];
+      const int n = projected_gaps(pair, kDirections[d], gaps);
+      all[2 + d] = same_sign_margin(gaps, n) * length_scale;
+      best_projection = std::max(best_projection, all[2 + d]);
+    }
+    all[1] = best_projection;
+    for (int k = 0; k < 4; ++k) all[7 + k] = bernstein[static_cast<std::size_t>(k)] * volume_scale;
+    Eigen::Vector3d mean_motion = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) mean_motion += 0.25 * (pair.end[k] - pair.start[k]);
+    double motion_squared = 0.0;
+    for (int k = 0; k < 4; ++k) motion_squared += (pair.end[k] - pair.start[k] - mean_motion).squaredNorm();
+    all[11] = std::sqrt(0.25 * motion_squared) * length_scale;
+    all[12] = centre_gap(pair.type, pair.start) * length_scale;
+    all[13] = centre_gap(pair.type, pair.end) * length_scale;
+    all[15] = primitive_area(pair.type, pair.start) * length_scale * length_scale;
+    all[16] = primitive_area(pair.type, pair.end) * length_scale * length_scale;
+  }
+  all[14] = pair.type == PairType::EdgeEdge ? 1.0 : 0.0;
+  std::copy(all, all + std::min(settings.count, kMaxPairFeatures), out);
+}
+
+void compute_pair_features(const PairGeometry* pairs, std::size_t count, const FeatureSettings& settings,
+                           PairFeatureBatch& batch) {
+  const std::size_t features = std::min(settings.count, kMaxPairFeatures);
+  batch.resize(count, features);
+  double row[kMaxPairFeatures];
+  for (std::size_t i = 0; i < count; ++i) {
+    compute_pair_features(pairs[i], settings, row);
+    for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = row[f];
+  }
+}
+
+}  // namespace clothcd::learning
