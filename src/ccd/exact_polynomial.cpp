@@ -82,15 +82,6 @@ void isolate(const Polynomial& p, const mpq_class& lo, const mpq_class& hi, std:
   isolate(p, mid, hi, out);
 }
 
-// True when the interval of `point` holds a root of the square-free f other than the point itself.
-bool interval_has_foreign_root(const AlgebraicPoint& point, const Polynomial& f_square_free) {
-  if (sign_at(f_square_free, point.lo) == 0 || sign_at(f_square_free, point.hi) == 0) return true;
-  const Polynomial common = gcd(point.poly, f_square_free);
-  // common divides the square-free poly, so its roots in (lo, hi) are at most the point itself, and simple.
-  const bool shares_point = degree(common) >= 1 && sign_at(common, point.lo) * sign_at(common, point.hi) < 0;
-  return count_roots(f_square_free, point.lo, point.hi) != (shares_point ? 1 : 0);
-}
-
 void bisect(AlgebraicPoint& point) {
   const mpq_class mid = (point.lo + point.hi) / 2;
   const int s_mid = sign_at(point.poly, mid);
@@ -105,6 +96,23 @@ void bisect(AlgebraicPoint& point) {
   } else {
     point.hi = mid;
   }
+}
+
+int count_roots(const PreparedPolynomial& f, const mpq_class& lo, const mpq_class& hi) {
+  return sign_variations(f.sturm, lo) - sign_variations(f.sturm, hi);
+}
+
+// True when f vanishes at the (irrational) point: gcd(point.poly, f) divides the square-free point.poly, so its roots
+// in (lo, hi) are at most the point itself, simple, and its values at lo and hi are non-zero.
+bool shares_point(const AlgebraicPoint& point, const PreparedPolynomial& f) {
+  const Polynomial common = gcd(point.poly, f.square_free);
+  return degree(common) >= 1 && sign_at(common, point.lo) * sign_at(common, point.hi) < 0;
+}
+
+// True when f has no root in [lo, hi] (call only when f does not vanish at the point).
+bool free_of_roots(const AlgebraicPoint& point, const PreparedPolynomial& f) {
+  return sign_at(f.square_free, point.lo) != 0 && sign_at(f.square_free, point.hi) != 0 &&
+         count_roots(f, point.lo, point.hi) == 0;
 }
 
 }  // namespace
@@ -191,28 +199,32 @@ std::vector<AlgebraicPoint> roots_in_unit_interval(const Polynomial& p) {
   return roots;
 }
 
-void isolate_from(AlgebraicPoint& point, const std::vector<Polynomial>& others) {
-  std::vector<Polynomial> square_free_others;
-  for (const Polynomial& f : others)
-    if (degree(f) >= 1) square_free_others.push_back(square_free(f));
-  for (bool clean = false; !clean && !point.is_rational;) {
-    clean = true;
-    for (const Polynomial& f : square_free_others) {
-      if (interval_has_foreign_root(point, f)) {
-        clean = false;
-        bisect(point);
-        break;
-      }
-    }
+PreparedPolynomial prepare(const Polynomial& p) {
+  PreparedPolynomial prepared{p, {}, {}};
+  if (degree(p) >= 1) {
+    prepared.square_free = square_free(p);
+    prepared.sturm = sturm_sequence(prepared.square_free);
   }
+  return prepared;
 }
 
-int sign_at(const AlgebraicPoint& point, const Polynomial& p) {
-  if (point.is_rational) return sign_at(p, point.value);
-  if (degree(p) <= 0) return is_zero(p) ? 0 : sgn(p.c[0]);
-  const Polynomial common = gcd(point.poly, square_free(p));
-  if (degree(common) >= 1 && sign_at(common, point.lo) * sign_at(common, point.hi) < 0) return 0;
-  return sign_at(p, point.lo);
+int sign_at(AlgebraicPoint& point, const PreparedPolynomial& f) {
+  if (degree(f.p) <= 0) return is_zero(f.p) ? 0 : sgn(f.p.c[0]);
+  if (point.is_rational) return sign_at(f.p, point.value);
+  if (shares_point(point, f)) return 0;
+  while (!point.is_rational && !free_of_roots(point, f)) bisect(point);
+  return sign_at(f.p, point.is_rational ? point.value : point.lo);
+}
+
+void isolate_from(AlgebraicPoint& point, const std::vector<PreparedPolynomial>& others) {
+  for (const PreparedPolynomial& f : others) {
+    if (degree(f.p) <= 0 || point.is_rational) continue;
+    const int expected = shares_point(point, f) ? 1 : 0;
+    // Shrinking keeps the property for the polynomials already handled.
+    while (!point.is_rational && (sign_at(f.square_free, point.lo) == 0 || sign_at(f.square_free, point.hi) == 0 ||
+                                  count_roots(f, point.lo, point.hi) != expected))
+      bisect(point);
+  }
 }
 
 }  // namespace clothcd::ccd::exact

@@ -41,11 +41,21 @@ struct AlgebraicPoint {
 /// All distinct roots in [0, 1] of the non-zero polynomial p, in increasing order.
 [[nodiscard]] std::vector<AlgebraicPoint> roots_in_unit_interval(const Polynomial& p);
 
-/// Shrinks point's isolating interval until no polynomial of `others` has a root in [lo, hi] other than the point
-/// itself (or until the point turns out rational). Afterwards sign_at(point, f) is exact for every f in `others`.
-void isolate_from(AlgebraicPoint& point, const std::vector<Polynomial>& others);
+/// A polynomial with its square-free part and that part's Sturm sequence, computed once for many sign queries.
+struct PreparedPolynomial {
+  Polynomial p;
+  Polynomial square_free;
+  std::vector<Polynomial> sturm;
+};
 
-/// Exact sign (-1, 0, 1) of p at the point; p must be one of the polynomials passed to isolate_from (or constant).
-[[nodiscard]] int sign_at(const AlgebraicPoint& point, const Polynomial& p);
+[[nodiscard]] PreparedPolynomial prepare(const Polynomial& p);
+
+/// Exact sign (-1, 0, 1) of f at the point. May shrink the point's isolating interval (or find it rational); the point
+/// stays the same number.
+[[nodiscard]] int sign_at(AlgebraicPoint& point, const PreparedPolynomial& f);
+
+/// Shrinks the point's isolating interval until no polynomial of `others` has a root in [lo, hi] other than the point
+/// itself (or until the point turns out rational): then lo and hi lie in the open pieces next to the point.
+void isolate_from(AlgebraicPoint& point, const std::vector<PreparedPolynomial>& others);
 
 }  // namespace clothcd::ccd::exact

@@ -13,6 +13,7 @@
 #include "ccd/exact_reference.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "ccd/exact_polynomial.hpp"
@@ -32,6 +33,12 @@ Polynomial determinant(const Vector& a, const Vector& b, const Vector& c) {
 // The polynomials whose signs decide the question, with index tables for the predicate.
 struct SignSystem {
   std::vector<Polynomial> polys;  // polys[0] = D
+  mutable std::vector<std::unique_ptr<PreparedPolynomial>> prepared;  // filled on first use, it costs GMP divisions
+
+  const PreparedPolynomial& prepared_poly(int i) const {
+    if (!prepared[i]) prepared[i] = std::make_unique<PreparedPolynomial>(prepare(polys[i]));
+    return *prepared[i];
+  }
   int points = 0;
   int cross[3][4][4] = {};  // cross[k][a][b]: 2D cross product of W[a], W[b] in the projection dropping axis k
   int dot[3][4][4] = {};    // dot[k][a][b]: 2D dot product in that projection
@@ -63,15 +70,33 @@ SignSystem build_system(PairKind kind, const RationalPoints& points) {
       }
     }
   }
+  system.prepared.resize(system.polys.size());
   return system;
 }
 
+// Exact signs of the system's polynomials at one point, computed on first use.
+class Signs {
+ public:
+  Signs(const SignSystem& system, AlgebraicPoint& point)
+      : system_(system), point_(point), cache_(system.polys.size(), kUnknown) {}
+  int operator[](int i) {
+    if (cache_[i] == kUnknown) cache_[i] = sign_at(point_, system_.prepared_poly(i));
+    return cache_[i];
+  }
+
+ private:
+  static constexpr int kUnknown = 2;
+  const SignSystem& system_;
+  AlgebraicPoint& point_;
+  std::vector<int> cache_;
+};
+
 // Sign of the 2D cross product W[a] x W[b] (antisymmetric; the table stores a <= b).
-int cross_sign(const SignSystem& system, const std::vector<int>& signs, int k, int a, int b) {
+int cross_sign(const SignSystem& system, Signs& signs, int k, int a, int b) {
   return a <= b ? signs[system.cross[k][a][b]] : -signs[system.cross[k][b][a]];
 }
 
-bool triangle_contains_origin(const SignSystem& system, const std::vector<int>& signs, int k, int a, int b, int c) {
+bool triangle_contains_origin(const SignSystem& system, Signs& signs, int k, int a, int b, int c) {
   const int s[3] = {cross_sign(system, signs, k, a, b), cross_sign(system, signs, k, b, c),
                     cross_sign(system, signs, k, c, a)};
   const bool has_positive = s[0] > 0 || s[1] > 0 || s[2] > 0;
@@ -87,7 +112,7 @@ bool triangle_contains_origin(const SignSystem& system, const std::vector<int>& 
   return false;
 }
 
-bool predicate(const SignSystem& system, const std::vector<int>& signs) {
+bool predicate(const SignSystem& system, Signs& signs) {
   if (signs[0] != 0) return false;
   for (int k = 0; k < 3; ++k) {
     bool inside = false;
@@ -98,13 +123,6 @@ bool predicate(const SignSystem& system, const std::vector<int>& signs) {
     if (!inside) return false;
   }
   return true;
-}
-
-std::vector<int> signs_at(const SignSystem& system, const AlgebraicPoint& point) {
-  std::vector<int> signs;
-  signs.reserve(system.polys.size());
-  for (const Polynomial& p : system.polys) signs.push_back(sign_at(point, p));
-  return signs;
 }
 
 double lower_bound_as_double(const AlgebraicPoint& point) {
@@ -119,16 +137,17 @@ ExactAnswer exact_collision(PairKind kind, const RationalPoints& points) {
   std::vector<AlgebraicPoint> candidates;
   if (!is_zero(system.polys[0])) {
     candidates = roots_in_unit_interval(system.polys[0]);
-    for (AlgebraicPoint& root : candidates) isolate_from(root, system.polys);
   } else {
     // Every sign is constant between consecutive roots of the non-zero polynomials: test those roots and a rational
     // sample inside every open piece between them. Once no polynomial has a root in [lo, hi] but the point itself, lo
     // and hi lie in the pieces next to an irrational root; the midpoints of consecutive samples cover the rest.
+    std::vector<PreparedPolynomial> all_prepared;
+    for (std::size_t i = 0; i < system.polys.size(); ++i) all_prepared.push_back(system.prepared_poly(static_cast<int>(i)));
     std::vector<mpq_class> samples{mpq_class(0), mpq_class(1)};
     for (std::size_t i = 1; i < system.polys.size(); ++i) {
       if (degree(system.polys[i]) < 1) continue;
       for (AlgebraicPoint& root : roots_in_unit_interval(system.polys[i])) {
-        isolate_from(root, system.polys);
+        isolate_from(root, all_prepared);
         if (root.is_rational) {
           samples.push_back(root.value);
         } else {
@@ -145,8 +164,9 @@ ExactAnswer exact_collision(PairKind kind, const RationalPoints& points) {
     for (const mpq_class& t : samples) candidates.push_back(AlgebraicPoint{true, t, {}, t, t});
   }
   ExactAnswer answer;
-  for (const AlgebraicPoint& point : candidates) {
-    if (!predicate(system, signs_at(system, point))) continue;
+  for (AlgebraicPoint& point : candidates) {
+    Signs signs(system, point);
+    if (!predicate(system, signs)) continue;
     answer.hit = true;
     answer.toi = std::min(answer.toi, lower_bound_as_double(point));
   }

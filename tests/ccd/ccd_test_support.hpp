@@ -1,0 +1,45 @@
+#pragma once
+// Helpers for the CCD tests: building queries and checking every CCD entry point against an expected answer.
+#include <catch2/catch.hpp>
+
+#include <array>
+
+#include "clothcd/ccd/ccd.hpp"
+
+namespace clothcd::test {
+
+using Eigen::Vector3d;
+
+/// A query from its four start and four end points (CcdQuery order).
+inline ccd::CcdQuery make_query(PairKind kind, const std::array<Vector3d, 4>& start, const std::array<Vector3d, 4>& end) {
+  ccd::CcdQuery query;
+  query.kind = kind;
+  query.start = start;
+  query.end = end;
+  return query;
+}
+
+/// The query with every coordinate multiplied by `scale` (a power of two keeps it exact).
+inline ccd::CcdQuery scaled(ccd::CcdQuery query, double scale) {
+  for (int i = 0; i < 4; ++i) {
+    query.start[i] *= scale;
+    query.end[i] *= scale;
+  }
+  return query;
+}
+
+/// Checks the exact reference, the fast path and (for colliding queries) that no filter culls.
+inline void check_query(const ccd::CcdQuery& query, bool expected) {
+  CHECK(ccd::exact_collision_reference(query) == expected);
+  const ccd::CcdResult result = ccd::continuous_collision(query);
+  CHECK(result.hit == expected);
+  CHECK(result.state == (expected ? ccd::CcdState::Hit : ccd::CcdState::Separated));
+  if (expected) {
+    CHECK_FALSE(ccd::nonpenetration_filter_culls(query));
+    CHECK_FALSE(ccd::projection_filter_culls(query));
+    CHECK_FALSE(ccd::projection_filter_culls(query, {}, ccd::ProjectionFilterOptions{true}));
+    CHECK_FALSE(ccd::combined_filters_cull(query));
+  }
+}
+
+}  // namespace clothcd::test

@@ -1,0 +1,184 @@
+// Seeded random and degenerate differential tests: the fast CCD and every filter against the exact rational reference.
+// Zero false negatives is the requirement; at thickness 0 the fast path must even agree exactly (it falls back to the
+// reference whenever floating point is unsure).
+#include <random>
+
+#include "ccd/ccd_test_support.hpp"
+
+using clothcd::PairKind;
+using clothcd::test::make_query;
+using clothcd::test::Vector3d;
+namespace ccd = clothcd::ccd;
+
+namespace {
+
+// Generators of queries with a meaningful share of collisions: half are built around a contact at a random time, the
+// rest are random or nearly touching.
+class QueryGenerator {
+ public:
+  explicit QueryGenerator(unsigned seed) : random_(seed) {}
+
+  // Continuous coordinates: contacts built at t* are only approximately exact after rounding, which is the point.
+  ccd::CcdQuery random_query(PairKind kind) {
+    std::array<Vector3d, 4> at_contact;
+    for (Vector3d& p : at_contact) p = vector(1.0);
+    if (coin()) {
+      // Put the first primitive onto the second at a random time: vertex on the face, or edge a through a point of b.
+      const double u = uniform(0, 1), v = uniform(0, 1 - u);
+      if (kind == PairKind::VertexFace) {
+        at_contact[0] = (1 - u - v) * at_contact[1] + u * at_contact[2] + v * at_contact[3];
+      } else {
+        const Vector3d on_b = (1 - u) * at_contact[2] + u * at_contact[3];
+        at_contact[1] = on_b + (on_b - at_contact[0]) * uniform(0.1, 2.0);
+      }
+    }
+    const double t_star = uniform(0, 1);
+    ccd::CcdQuery query;
+    query.kind = kind;
+    for (int i = 0; i < 4; ++i) {
+      const Vector3d velocity = vector(2.0);
+      query.start[i] = at_contact[i] - t_star * velocity;
+      query.end[i] = query.start[i] + velocity;
+    }
+    if (coin() && coin()) nudge(query, 1e-12);
+    return query;
+  }
+
+  // Coordinates on a coarse dyadic grid: exact coplanarity, coincident points, parallel and zero-length edges,
+  // zero-area faces, contacts at exactly t = 0, 1/2 or 1, and planar motion (D identically zero).
+  ccd::CcdQuery degenerate_query(PairKind kind) {
+    ccd::CcdQuery query;
+    query.kind = kind;
+    const bool planar = coin();
+    for (int i = 0; i < 4; ++i) {
+      query.start[i] = grid_vector();
+      query.end[i] = coin() ? query.start[i] : grid_vector();
+      if (planar) query.start[i].z() = query.end[i].z() = 0.0;
+    }
+    if (coin()) query.end[pick(4)] = query.end[pick(4)];            // coincident points at the end
+    if (coin()) query.start[pick(4)] = query.start[pick(4)];        // ... or at the start
+    if (kind == PairKind::EdgeEdge && coin()) {                     // parallel edges
+      const Vector3d direction = grid_vector();
+      query.start[3] = query.start[2] + direction;
+      query.end[3] = query.end[2] + direction;
+      query.start[1] = query.start[0] + 0.5 * direction;
+      query.end[1] = query.end[0] + 0.5 * direction;
+    }
+    return query;
+  }
+
+ private:
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random_); }
+  bool coin() { return std::bernoulli_distribution(0.5)(random_); }
+  int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(random_); }
+  Vector3d vector(double extent) { return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)}; }
+  Vector3d grid_vector() {
+    std::uniform_int_distribution<int> step(-2, 2);
+    return Vector3d(step(random_), step(random_), step(random_)) * 0.5;
+  }
+  void nudge(ccd::CcdQuery& query, double size) {
+    auto& points = coin() ? query.start : query.end;
+    points[pick(4)][pick(3)] += coin() ? size : -size;
+  }
+
+  std::mt19937 random_;
+};
+
+struct Tally {
+  int queries = 0;
+  int reference_hits = 0;
+};
+
+void check_against_reference(const ccd::CcdQuery& query, Tally& tally) {
+  const bool expected = ccd::exact_collision_reference(query);
+  ++tally.queries;
+  tally.reference_hits += expected ? 1 : 0;
+  const ccd::CcdResult result = ccd::continuous_collision(query);
+  INFO("start " << query.start[0].transpose() << " | " << query.start[1].transpose() << " | "
+                << query.start[2].transpose() << " | " << query.start[3].transpose());
+  INFO("end   " << query.end[0].transpose() << " | " << query.end[1].transpose() << " | " << query.end[2].transpose()
+                << " | " << query.end[3].transpose());
+  REQUIRE((result.hit || !expected));  // never a false negative
+  CHECK(result.hit == expected);      // exact at thickness 0
+  if (result.hit) {
+    CHECK(result.toi >= 0.0);
+    CHECK(result.toi <= 1.0);
+  }
+  if (expected) {
+    CHECK_FALSE(ccd::nonpenetration_filter_culls(query));
+    CHECK_FALSE(ccd::projection_filter_culls(query));
+    CHECK_FALSE(ccd::projection_filter_culls(query, {}, ccd::ProjectionFilterOptions{true}));
+    CHECK_FALSE(ccd::combined_filters_cull(query));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("random queries: fast CCD and filters never miss a reference collision", "[ccd][differential]") {
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 20261122u : 4242u);
+  Tally tally;
+  for (int i = 0; i < 400; ++i) check_against_reference(generator.random_query(kind), tally);
+  // The generator must produce a meaningful share of both answers, or the test proves nothing.
+  CHECK(tally.reference_hits > tally.queries / 5);
+  CHECK(tally.reference_hits < tally.queries * 4 / 5);
+}
+
+TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference collision", "[ccd][differential]") {
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 77u : 78u);
+  Tally tally;
+  for (int i = 0; i < 250; ++i) check_against_reference(generator.degenerate_query(kind), tally);
+  CHECK(tally.reference_hits > tally.queries / 10);
+}
+
+TEST_CASE("the filters cull a useful share of random separated pairs", "[ccd][filters]") {
+  // Not a safety property but a sanity check that the filters are switched on: far-apart pairs are culled.
+  QueryGenerator generator(99u);
+  int culled_nonpenetration = 0, culled_projection = 0, separated = 0;
+  for (int i = 0; i < 400; ++i) {
+    ccd::CcdQuery query = generator.random_query(PairKind::VertexFace);
+    for (int j = 1; j < 4; ++j) {
+      query.start[j].x() += 10.0;
+      query.end[j].x() += 10.0;
+    }
+    if (ccd::exact_collision_reference(query)) continue;
+    ++separated;
+    culled_nonpenetration += ccd::nonpenetration_filter_culls(query) ? 1 : 0;
+    culled_projection += ccd::projection_filter_culls(query) ? 1 : 0;
+  }
+  CHECK(culled_projection > separated * 9 / 10);
+  CHECK(culled_nonpenetration > separated / 5);
+}
+
+TEST_CASE("thickness: every touching pair is still reported", "[ccd][thickness][differential]") {
+  QueryGenerator generator(5u);
+  ccd::CcdSettings settings;
+  settings.thickness = 1e-3;
+  for (int i = 0; i < 300; ++i) {
+    const auto kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    const ccd::CcdQuery query = i % 3 ? generator.random_query(kind) : generator.degenerate_query(kind);
+    if (!ccd::exact_collision_reference(query)) continue;
+    CHECK(ccd::continuous_collision(query, settings).hit);
+    CHECK_FALSE(ccd::projection_filter_culls(query, settings));
+    CHECK_FALSE(ccd::combined_filters_cull(query, settings));
+  }
+}
+
+TEST_CASE("batched filtering matches the single-query filters", "[ccd][filters]") {
+  QueryGenerator generator(11u);
+  std::vector<ccd::CcdQuery> queries;
+  for (int i = 0; i < 200; ++i) queries.push_back(generator.random_query(i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge));
+  std::vector<std::uint8_t> keep;
+  const std::size_t kept = ccd::filter_batch(queries, ccd::CcdFilter::Combined, {}, keep);
+  REQUIRE(keep.size() == queries.size());
+  std::size_t expected_kept = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    CHECK(keep[i] == (ccd::combined_filters_cull(queries[i]) ? 0 : 1));
+    expected_kept += keep[i];
+  }
+  CHECK(kept == expected_kept);
+  std::vector<ccd::CcdResult> results;
+  ccd::continuous_collision_batch(queries, keep, {}, results);
+  for (std::size_t i = 0; i < queries.size(); ++i) CHECK(results[i].hit == ccd::exact_collision_reference(queries[i]));
+}
