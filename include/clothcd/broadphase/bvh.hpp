@@ -1,0 +1,110 @@
+#pragma once
+/// @file
+/// A bounding volume hierarchy over the triangles of one body, with AABB, sphere or OBB nodes, built top-down once and
+/// refitted bottom-up every step; it is rebuilt when refitting has made it much looser than when it was built.
+
+#include <vector>
+
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/swept_boxes.hpp"
+#include "clothcd/geometry/bounding_volumes.hpp"
+#include "clothcd/mesh/triangle_mesh.hpp"
+
+namespace clothcd::broadphase {
+
+/// The bounding volume stored in every node of a hierarchy.
+enum class VolumeKind {
+  Aabb,    ///< Axis-aligned boxes.
+  Sphere,  ///< Spheres (the root can also carry an AABB, built on demand: the paper's root-node double box).
+  Obb,     ///< Oriented boxes (axes from the node's vertices, extents bounding its swept triangle boxes).
+};
+
+/// How a hierarchy is built and when it is rebuilt.
+struct BvhSettings {
+  VolumeKind volume = VolumeKind::Aabb;  ///< Node volume.
+  int max_leaf_faces = 2;                ///< A node with at most this many triangles is a leaf (>= 1).
+  /// Rebuild rule: after a refit, the hierarchy is rebuilt from scratch when its looseness (the sum over internal nodes
+  /// of the box surface area, or of 4 r^2 for spheres) exceeds `rebuild_ratio` times its value right after the last
+  /// build. 0 rebuilds every step; infinity never rebuilds.
+  double rebuild_ratio = 2.0;
+};
+
+/// One node: its triangles are face_order[face_begin, face_end); the left child is the next node, the right child is
+/// node `right` (-1 for a leaf). Nodes are stored in depth-first pre-order, so children follow their parent.
+struct BvhNode {
+  int right = -1;      ///< Index of the right child, -1 for a leaf.
+  int face_begin = 0;  ///< First position in face_order.
+  int face_end = 0;    ///< One past the last position in face_order.
+
+  /// True for a leaf.
+  [[nodiscard]] bool is_leaf() const { return right < 0; }
+};
+
+/// What update() did.
+enum class BvhUpdate {
+  Refitted,  ///< Volumes recomputed bottom-up with the same tree.
+  Rebuilt,   ///< The tree was rebuilt because the rebuild rule fired (or it had never been built).
+};
+
+/// Hierarchy over one body's triangles. Owned vertices and edges (BodyTopology owners) are stored in the order of their
+/// owning triangle, so every node, leaf or not, holds a contiguous range of them.
+class Bvh {
+ public:
+  /// An empty hierarchy with the given settings; call build() or update() before use.
+  explicit Bvh(const BvhSettings& settings = {});
+
+  /// Builds the tree top-down (median split of triangle box centres along the widest axis) and its volumes.
+  /// `start`/`end` are the body's positions (#V x 3), used for OBB axes; `boxes` must match them.
+  void build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
+
+  /// Refits the volumes bottom-up for new boxes and positions, then rebuilds if the rebuild rule fires.
+  BvhUpdate update(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
+
+  /// Settings in use.
+  [[nodiscard]] const BvhSettings& settings() const { return settings_; }
+  /// Nodes in pre-order; node 0 is the root. Empty before the first build.
+  [[nodiscard]] const std::vector<BvhNode>& nodes() const { return nodes_; }
+  /// #F face indices in tree order.
+  [[nodiscard]] const std::vector<int>& face_order() const { return face_order_; }
+  /// Owned vertices in tree order; those of node n are owned_vertices[vertex_offset[n.face_begin] .. [n.face_end]).
+  [[nodiscard]] const std::vector<int>& owned_vertices() const { return owned_vertices_; }
+  /// #F + 1 prefix offsets into owned_vertices, indexed by position in face_order.
+  [[nodiscard]] const std::vector<int>& vertex_offset() const { return vertex_offset_; }
+  /// Owned edges in tree order, indexed like owned_vertices through edge_offset.
+  [[nodiscard]] const std::vector<int>& owned_edges() const { return owned_edges_; }
+  /// #F + 1 prefix offsets into owned_edges.
+  [[nodiscard]] const std::vector<int>& edge_offset() const { return edge_offset_; }
+  /// Node boxes (VolumeKind::Aabb), one per node.
+  [[nodiscard]] const std::vector<FlatBox>& boxes() const { return boxes_; }
+  /// Node spheres (VolumeKind::Sphere), one per node.
+  [[nodiscard]] const std::vector<geometry::Sphere>& spheres() const { return spheres_; }
+  /// Node oriented boxes (VolumeKind::Obb), one per node.
+  [[nodiscard]] const std::vector<geometry::Obb>& obbs() const { return obbs_; }
+  /// Looseness (see BvhSettings::rebuild_ratio) now and right after the last build.
+  [[nodiscard]] double looseness() const { return looseness_; }
+  /// Looseness right after the last build.
+  [[nodiscard]] double built_looseness() const { return built_looseness_; }
+  /// Number of builds so far (the first one included).
+  [[nodiscard]] int build_count() const { return build_count_; }
+
+ private:
+  void refit(const SweptBoxes& boxes);
+  void fit_obb_axes(const BodyTopology& topology, const Vertices& start, const Vertices& end);
+
+  BvhSettings settings_;
+  std::vector<BvhNode> nodes_;
+  std::vector<int> face_order_;
+  std::vector<int> owned_vertices_;
+  std::vector<int> vertex_offset_;
+  std::vector<int> owned_edges_;
+  std::vector<int> edge_offset_;
+  std::vector<FlatBox> boxes_;
+  std::vector<geometry::Sphere> spheres_;
+  std::vector<geometry::Obb> obbs_;
+  std::vector<FlatBox> scratch_boxes_;
+  double looseness_ = 0.0;
+  double built_looseness_ = 0.0;
+  int build_count_ = 0;
+};
+
+}  // namespace clothcd::broadphase

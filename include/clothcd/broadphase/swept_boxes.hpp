@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Swept bounding boxes of every primitive of a body over one step: each box bounds the primitive at t0 and at t1
+/// (linear motion stays inside it) inflated by the thickness.
+
+#include <vector>
+
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/geometry/bounding_volumes.hpp"
+#include "clothcd/mesh/triangle_mesh.hpp"
+
+namespace clothcd::broadphase {
+
+/// Axis-aligned box in single flat storage, cheaper to test than geometry::Aabb in the hot loops.
+struct FlatBox {
+  double min[3];  ///< Lower corner.
+  double max[3];  ///< Upper corner.
+
+  /// True when the closed boxes share a point.
+  [[nodiscard]] bool overlaps(const FlatBox& o) const {
+    return min[0] <= o.max[0] && o.min[0] <= max[0] && min[1] <= o.max[1] && o.min[1] <= max[1] &&
+           min[2] <= o.max[2] && o.min[2] <= max[2];
+  }
+  /// Grows the box to contain `o`.
+  void expand(const FlatBox& o) {
+    for (int k = 0; k < 3; ++k) {
+      min[k] = o.min[k] < min[k] ? o.min[k] : min[k];
+      max[k] = o.max[k] > max[k] ? o.max[k] : max[k];
+    }
+  }
+  /// The box as a geometry::Aabb.
+  [[nodiscard]] geometry::Aabb to_aabb() const {
+    geometry::Aabb b;
+    b.min = Eigen::Vector3d(min[0], min[1], min[2]);
+    b.max = Eigen::Vector3d(max[0], max[1], max[2]);
+    return b;
+  }
+};
+
+/// An empty box (min = +inf, max = -inf): expanding it by a box gives that box.
+[[nodiscard]] FlatBox empty_flat_box();
+
+/// Per-step swept boxes of one body; arrays are indexed like the body's vertices, edges and faces.
+struct SweptBoxes {
+  std::vector<FlatBox> vertices;  ///< #V boxes (vertices that no face uses get a box too; nothing reads it).
+  std::vector<FlatBox> edges;     ///< #E boxes, union of the two vertex boxes.
+  std::vector<FlatBox> faces;     ///< #F boxes, union of the three vertex boxes.
+};
+
+/// Fills `boxes` for positions `start` and `end` (#V x 3 each) with every box inflated by `thickness` (>= 0) on every
+/// side, reusing its storage. Two primitives whose distance stays below the thickness have overlapping boxes.
+/// Preconditions (checked by callers at the public boundary): matching sizes, finite coordinates.
+void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, const Vertices& end, double thickness,
+                         SweptBoxes& boxes);
+
+}  // namespace clothcd::broadphase

@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// Candidate pair search: descend two hierarchies (or one against itself) and test the owned primitives of overlapping
+/// leaves by their swept boxes. Pairs sharing a vertex are skipped inside a body, and since every vertex and edge is
+/// owned by one triangle, no pair is produced twice and adjacent triangles are never listed as pairs.
+/// Section 3.2.1 of Jin et al.: with sphere hierarchies the root spheres are tested first, the root AABBs are built and
+/// tested only when the spheres overlap, and only then does the search descend depth-first.
+
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/bvh.hpp"
+#include "clothcd/broadphase/candidates.hpp"
+#include "clothcd/broadphase/swept_boxes.hpp"
+
+namespace clothcd::broadphase {
+
+/// One body as the search sees it; every pointer must stay valid during the call.
+struct BodyView {
+  int body = 0;                            ///< Body id written into the candidates (0 = cloth).
+  const BodyTopology* topology = nullptr;  ///< Primitives and owners.
+  const SweptBoxes* boxes = nullptr;       ///< Swept boxes of the step.
+  const Bvh* bvh = nullptr;                ///< Hierarchy refitted to `boxes` (unused by the brute-force reference).
+};
+
+/// Search options.
+struct TraversalSettings {
+  bool parallel = true;  ///< Split the search into tasks run by TBB (output order stays deterministic).
+};
+
+/// What one search did.
+struct TraversalStats {
+  long volume_tests = 0;             ///< Node volume overlap tests.
+  long primitive_tests = 0;          ///< Primitive swept-box tests.
+  bool root_sphere_overlap = false;  ///< Sphere hierarchies: the root spheres overlapped.
+  bool root_aabb_overlap = false;    ///< Sphere hierarchies: the root AABBs were built and overlapped.
+
+  /// Adds the counts of `o` (flags are or-ed).
+  void add(const TraversalStats& o) {
+    volume_tests += o.volume_tests;
+    primitive_tests += o.primitive_tests;
+    root_sphere_overlap = root_sphere_overlap || o.root_sphere_overlap;
+    root_aabb_overlap = root_aabb_overlap || o.root_aabb_overlap;
+  }
+};
+
+/// The AABB of a whole body for the step (union of its vertex boxes): the second root volume of the double box.
+[[nodiscard]] FlatBox body_box(const BodyView& body);
+
+/// Appends to `out` every vertex-face pair (v, f) with v not in f and every edge-edge pair sharing no vertex, within
+/// `body`, whose swept boxes overlap. Node volumes: Aabb or Sphere (Obb is searched through its triangle boxes too).
+/// Order: deterministic, not sorted (see sort_candidates).
+void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats = nullptr);
+
+/// Appends to `out` every pair between body `a` and body `b` (a.body < b.body) whose swept boxes overlap: vertices of a
+/// vs faces of b, vertices of b vs faces of a, edges of a vs edges of b. Volume pairs: Aabb-Aabb, Sphere-Sphere (root
+/// double box logic), Aabb-Obb. Throws std::invalid_argument for any other combination.
+void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats = nullptr);
+
+/// The reference: the same pairs as find_self_candidates by testing every vertex against every face and every edge
+/// against every edge (quadratic; for tests).
+void brute_force_self_candidates(const BodyView& body, CandidateSet& out);
+
+/// The reference for find_pair_candidates (quadratic; for tests).
+void brute_force_pair_candidates(const BodyView& a, const BodyView& b, CandidateSet& out);
+
+}  // namespace clothcd::broadphase

@@ -1,0 +1,204 @@
+// Bounding volume hierarchy over a body's triangles: top-down median split, bottom-up refit of AABB, sphere or OBB
+// nodes every step, and a rebuild when the refitted tree has grown too loose. Sphere nodes follow Jin et al.,
+// section 3.2.1 (bounding spheres for non-root nodes); the root's second volume, its AABB, is built by the search only
+// when the root spheres overlap (traversal.cpp).
+#include "clothcd/broadphase/bvh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "node_obb_axes.hpp"
+
+namespace clothcd::broadphase {
+namespace {
+
+// Relative padding that keeps rounding from shrinking a sphere or OBB below what it must contain.
+constexpr double kPad = 1e-12;
+
+double box_area(const FlatBox& b) {
+  const double dx = b.max[0] - b.min[0], dy = b.max[1] - b.min[1], dz = b.max[2] - b.min[2];
+  return 2.0 * (dx * dy + dy * dz + dz * dx);
+}
+
+geometry::Sphere box_sphere(const FlatBox& b) {
+  geometry::Sphere s;
+  Eigen::Vector3d half;
+  for (int k = 0; k < 3; ++k) {
+    s.center[k] = 0.5 * (b.min[k] + b.max[k]);
+    half[k] = 0.5 * (b.max[k] - b.min[k]);
+  }
+  s.radius = half.norm() * (1.0 + kPad);
+  return s;
+}
+
+// The smallest sphere containing spheres a and b.
+geometry::Sphere merge_spheres(const geometry::Sphere& a, const geometry::Sphere& b) {
+  const Eigen::Vector3d d = b.center - a.center;
+  const double distance = d.norm();
+  if (distance + b.radius <= a.radius) return a;
+  if (distance + a.radius <= b.radius) return b;
+  geometry::Sphere s;
+  s.radius = 0.5 * (distance + a.radius + b.radius);
+  s.center = a.center + d * ((s.radius - a.radius) / distance);
+  s.radius *= 1.0 + kPad;
+  return s;
+}
+
+struct BuildContext {
+  std::vector<int>& order;
+  const std::vector<Eigen::Vector3d>& centroids;
+  std::vector<BvhNode>& nodes;
+  int max_leaf;
+};
+
+int build_range(BuildContext& context, int begin, int end) {
+  const int index = static_cast<int>(context.nodes.size());
+  context.nodes.push_back(BvhNode{-1, begin, end});
+  if (end - begin <= context.max_leaf) return index;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (int i = begin; i < end; ++i) {
+    lo = lo.cwiseMin(context.centroids[context.order[i]]);
+    hi = hi.cwiseMax(context.centroids[context.order[i]]);
+  }
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  const int middle = begin + (end - begin) / 2;
+  std::nth_element(context.order.begin() + begin, context.order.begin() + middle, context.order.begin() + end,
+                   [&](int a, int b) { return context.centroids[a][axis] < context.centroids[b][axis]; });
+  build_range(context, begin, middle);
+  const int right = build_range(context, middle, end);
+  context.nodes[index].right = right;
+  return index;
+}
+
+// Groups `owner`-indexed primitives by the tree position of their owner: a counting sort into owned/offset.
+void group_by_owner(const std::vector<int>& owner, const std::vector<int>& position, std::vector<int>& owned,
+                    std::vector<int>& offset) {
+  offset.assign(position.size() + 1, 0);
+  for (int o : owner) {
+    if (o >= 0) ++offset[position[o] + 1];
+  }
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  owned.assign(offset.back(), -1);
+  std::vector<int> cursor(offset.begin(), offset.end() - 1);
+  for (int p = 0; p < static_cast<int>(owner.size()); ++p) {
+    if (owner[p] >= 0) owned[cursor[position[owner[p]]]++] = p;
+  }
+}
+
+}  // namespace
+
+Bvh::Bvh(const BvhSettings& settings) : settings_(settings) {
+  settings_.max_leaf_faces = std::max(1, settings_.max_leaf_faces);
+}
+
+void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end) {
+  const int face_count = topology.face_count();
+  face_order_.resize(face_count);
+  std::iota(face_order_.begin(), face_order_.end(), 0);
+  std::vector<Eigen::Vector3d> centroids(face_count);
+  for (int f = 0; f < face_count; ++f) {
+    const FlatBox& b = boxes.faces[f];
+    centroids[f] = Eigen::Vector3d(b.min[0] + b.max[0], b.min[1] + b.max[1], b.min[2] + b.max[2]);
+  }
+  nodes_.clear();
+  nodes_.reserve(2 * static_cast<std::size_t>(face_count) / settings_.max_leaf_faces + 1);
+  BuildContext context{face_order_, centroids, nodes_, settings_.max_leaf_faces};
+  build_range(context, 0, face_count);
+
+  std::vector<int> position(face_count);
+  for (int i = 0; i < face_count; ++i) position[face_order_[i]] = i;
+  group_by_owner(topology.vertex_owner, position, owned_vertices_, vertex_offset_);
+  group_by_owner(topology.edge_owner, position, owned_edges_, edge_offset_);
+
+  boxes_.clear();
+  spheres_.clear();
+  obbs_.clear();
+  if (settings_.volume == VolumeKind::Obb) fit_obb_axes(topology, start, end);
+  refit(boxes);
+  built_looseness_ = looseness_;
+  ++build_count_;
+}
+
+BvhUpdate Bvh::update(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start,
+                      const Vertices& end) {
+  if (nodes_.empty() || static_cast<int>(face_order_.size()) != topology.face_count()) {
+    build(topology, boxes, start, end);
+    return BvhUpdate::Rebuilt;
+  }
+  refit(boxes);
+  const bool degraded = built_looseness_ > 0 ? looseness_ > settings_.rebuild_ratio * built_looseness_
+                                             : settings_.rebuild_ratio <= 0;
+  if (degraded) {
+    build(topology, boxes, start, end);
+    return BvhUpdate::Rebuilt;
+  }
+  return BvhUpdate::Refitted;
+}
+
+void Bvh::fit_obb_axes(const BodyTopology& topology, const Vertices& start, const Vertices& end) {
+  obbs_.resize(nodes_.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const detail::NodeTriangles node{&topology, face_order_.data() + nodes_[i].face_begin,
+                                     face_order_.data() + nodes_[i].face_end, &start, &end};
+    obbs_[i].axes = detail::node_obb_axes(node);
+  }
+}
+
+void Bvh::refit(const SweptBoxes& boxes) {
+  const int node_count = static_cast<int>(nodes_.size());
+  looseness_ = 0.0;
+  if (settings_.volume == VolumeKind::Obb) {
+    obbs_.resize(node_count);
+    for (int i = 0; i < node_count; ++i) {
+      geometry::Obb& obb = obbs_[i];
+      const Eigen::Matrix3d axes_t = obb.axes.transpose();
+      const Eigen::Matrix3d abs_axes_t = axes_t.cwiseAbs();
+      Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+      Eigen::Vector3d hi = -lo;
+      for (int p = nodes_[i].face_begin; p < nodes_[i].face_end; ++p) {
+        const FlatBox& b = boxes.faces[face_order_[p]];
+        const Eigen::Vector3d c(0.5 * (b.min[0] + b.max[0]), 0.5 * (b.min[1] + b.max[1]), 0.5 * (b.min[2] + b.max[2]));
+        const Eigen::Vector3d h(0.5 * (b.max[0] - b.min[0]), 0.5 * (b.max[1] - b.min[1]), 0.5 * (b.max[2] - b.min[2]));
+        const Eigen::Vector3d center = axes_t * c;
+        const Eigen::Vector3d radius = abs_axes_t * h;
+        lo = lo.cwiseMin(center - radius);
+        hi = hi.cwiseMax(center + radius);
+      }
+      const double scale = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+      obb.center = obb.axes * (0.5 * (lo + hi));
+      obb.half_extents = (0.5 * (hi - lo)).array() + kPad * scale;
+      if (!nodes_[i].is_leaf()) {
+        const Eigen::Vector3d& e = obb.half_extents;
+        looseness_ += 8.0 * (e.x() * e.y() + e.y() * e.z() + e.z() * e.x());
+      }
+    }
+    return;
+  }
+  std::vector<FlatBox>& node_boxes = settings_.volume == VolumeKind::Aabb ? boxes_ : scratch_boxes_;
+  node_boxes.resize(node_count);
+  if (settings_.volume == VolumeKind::Sphere) spheres_.resize(node_count);
+  for (int i = node_count - 1; i >= 0; --i) {
+    const BvhNode& node = nodes_[i];
+    if (node.is_leaf()) {
+      FlatBox b = empty_flat_box();
+      for (int p = node.face_begin; p < node.face_end; ++p) b.expand(boxes.faces[face_order_[p]]);
+      node_boxes[i] = b;
+      if (settings_.volume == VolumeKind::Sphere) spheres_[i] = box_sphere(b);
+      continue;
+    }
+    if (settings_.volume == VolumeKind::Sphere) {
+      spheres_[i] = merge_spheres(spheres_[i + 1], spheres_[node.right]);
+      looseness_ += 4.0 * spheres_[i].radius * spheres_[i].radius;
+    } else {
+      FlatBox b = node_boxes[i + 1];
+      b.expand(node_boxes[node.right]);
+      node_boxes[i] = b;
+      looseness_ += box_area(b);
+    }
+  }
+}
+
+}  // namespace clothcd::broadphase

@@ -1,0 +1,358 @@
+// Candidate search over bounding volume hierarchies (Jin et al., section 3.2.1): simultaneous depth-first descent of
+// two hierarchies, or of one against itself, then swept-box tests of the primitives owned by overlapping leaves.
+// Sphere hierarchies follow the paper's root-node double box literally: root spheres first, then the root AABBs (built
+// here, only when the spheres overlap), then the descent. The search is split into independent tasks for TBB; each
+// task writes its own buffer and the buffers are joined in task order, so the output does not depend on the schedule.
+#include "clothcd/broadphase/traversal.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace clothcd::broadphase {
+namespace {
+
+// Enough tasks to balance two cores without making the serial expansion or the joins expensive.
+constexpr std::size_t kTargetTasks = 64;
+
+struct Task {
+  int a = 0;            // node of the first hierarchy
+  int b = 0;            // node of the second hierarchy; for a self task a == b
+  bool self = false;    // the subtree of `a` against itself
+  bool tested = false;  // the volumes of (a, b) are already known to overlap
+};
+
+// The three ways two node volumes are compared. Each is conservative: it never reports separation for volumes whose
+// contents overlap (the OBB test widens its projected radii slightly to absorb rounding).
+struct BoxBox {
+  const Bvh* a;
+  const Bvh* b;
+  bool operator()(int i, int j) const { return a->boxes()[i].overlaps(b->boxes()[j]); }
+};
+
+struct SphereSphere {
+  const Bvh* a;
+  const Bvh* b;
+  bool operator()(int i, int j) const { return a->spheres()[i].overlaps(b->spheres()[j]); }
+};
+
+// Separating axis test of an AABB against an OBB over the 15 candidate axes (Gottschalk et al. 1996).
+bool box_obb_overlap(const FlatBox& box, const geometry::Obb& obb) {
+  const Eigen::Vector3d ca(0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
+                           0.5 * (box.min[2] + box.max[2]));
+  const Eigen::Vector3d ea(0.5 * (box.max[0] - box.min[0]), 0.5 * (box.max[1] - box.min[1]),
+                           0.5 * (box.max[2] - box.min[2]));
+  const Eigen::Matrix3d& r = obb.axes;
+  const Eigen::Matrix3d abs_r = r.cwiseAbs().array() + 1e-9;
+  const Eigen::Vector3d t = obb.center - ca;
+  const Eigen::Vector3d& eb = obb.half_extents;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(t[i]) > ea[i] + eb.dot(abs_r.row(i).transpose())) return false;
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (std::abs(t.dot(r.col(j))) > ea.dot(abs_r.col(j)) + eb[j]) return false;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
+      const double rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
+      if (std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) > ra + rb) return false;
+    }
+  }
+  return true;
+}
+
+struct BoxObb {
+  const Bvh* a;
+  const Bvh* b;
+  bool operator()(int i, int j) const { return box_obb_overlap(a->boxes()[i], b->obbs()[j]); }
+};
+
+struct Range {
+  int begin;
+  int end;
+};
+
+Range vertex_range(const Bvh& bvh, const BvhNode& node) {
+  return {bvh.vertex_offset()[node.face_begin], bvh.vertex_offset()[node.face_end]};
+}
+Range edge_range(const Bvh& bvh, const BvhNode& node) {
+  return {bvh.edge_offset()[node.face_begin], bvh.edge_offset()[node.face_end]};
+}
+
+// Primitive tests of two leaves of different bodies.
+void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, CandidateSet& out,
+                       TraversalStats& stats) {
+  const Bvh& ta = *a.bvh;
+  const Bvh& tb = *b.bvh;
+  const BvhNode& la = ta.nodes()[na];
+  const BvhNode& lb = tb.nodes()[nb];
+  const Range va = vertex_range(ta, la), vb = vertex_range(tb, lb);
+  const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
+  for (int i = va.begin; i < va.end; ++i) {
+    const int v = ta.owned_vertices()[i];
+    const FlatBox& box = a.boxes->vertices[v];
+    for (int p = lb.face_begin; p < lb.face_end; ++p) {
+      const int f = tb.face_order()[p];
+      if (box.overlaps(b.boxes->faces[f])) out.vertex_face.push_back({a.body, v, b.body, f});
+    }
+  }
+  for (int i = vb.begin; i < vb.end; ++i) {
+    const int v = tb.owned_vertices()[i];
+    const FlatBox& box = b.boxes->vertices[v];
+    for (int p = la.face_begin; p < la.face_end; ++p) {
+      const int f = ta.face_order()[p];
+      if (box.overlaps(a.boxes->faces[f])) out.vertex_face.push_back({b.body, v, a.body, f});
+    }
+  }
+  for (int i = ea.begin; i < ea.end; ++i) {
+    const int e = ta.owned_edges()[i];
+    const FlatBox& box = a.boxes->edges[e];
+    for (int j = eb.begin; j < eb.end; ++j) {
+      const int g = tb.owned_edges()[j];
+      if (box.overlaps(b.boxes->edges[g])) out.edge_edge.push_back({a.body, e, b.body, g});
+    }
+  }
+  stats.primitive_tests += static_cast<long>(va.end - va.begin) * (lb.face_end - lb.face_begin) +
+                           static_cast<long>(vb.end - vb.begin) * (la.face_end - la.face_begin) +
+                           static_cast<long>(ea.end - ea.begin) * (eb.end - eb.begin);
+}
+
+// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself.
+void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, TraversalStats& stats) {
+  const Bvh& t = *body.bvh;
+  const BodyTopology& topo = *body.topology;
+  const SweptBoxes& boxes = *body.boxes;
+  const BvhNode& la = t.nodes()[na];
+  const BvhNode& lb = t.nodes()[nb];
+  const bool same = na == nb;
+  auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf) {
+    const Range vr = vertex_range(t, vertex_leaf);
+    for (int i = vr.begin; i < vr.end; ++i) {
+      const int v = t.owned_vertices()[i];
+      const FlatBox& box = boxes.vertices[v];
+      for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
+        const int f = t.face_order()[p];
+        if (!topo.face_has_vertex(f, v) && box.overlaps(boxes.faces[f])) {
+          out.vertex_face.push_back({body.body, v, body.body, f});
+        }
+      }
+    }
+    stats.primitive_tests += static_cast<long>(vr.end - vr.begin) * (face_leaf.face_end - face_leaf.face_begin);
+  };
+  vertices_against_faces(la, lb);
+  if (!same) vertices_against_faces(lb, la);
+  const Range ea = edge_range(t, la), eb = edge_range(t, lb);
+  for (int i = ea.begin; i < ea.end; ++i) {
+    const int e = t.owned_edges()[i];
+    const FlatBox& box = boxes.edges[e];
+    for (int j = same ? i + 1 : eb.begin; j < eb.end; ++j) {
+      const int g = t.owned_edges()[j];
+      ++stats.primitive_tests;
+      if (!topo.edges_share_vertex(e, g) && box.overlaps(boxes.edges[g])) {
+        out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
+      }
+    }
+  }
+}
+
+int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - bvh.nodes()[node].face_begin; }
+
+// One step of the depth-first search: leaf work goes to `on_leaves`, further tasks to `push`.
+template <class Overlap, class Push, class OnLeaves>
+void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task, TraversalStats& stats,
+          const Push& push, const OnLeaves& on_leaves) {
+  const BvhNode& na = ta.nodes()[task.a];
+  if (task.self) {
+    if (na.is_leaf()) {
+      on_leaves(task);
+      return;
+    }
+    push(Task{task.a + 1, task.a + 1, true, true});
+    push(Task{na.right, na.right, true, true});
+    push(Task{task.a + 1, na.right, false, false});
+    return;
+  }
+  if (!task.tested) {
+    ++stats.volume_tests;
+    if (!overlap(task.a, task.b)) return;
+  }
+  const BvhNode& nb = tb.nodes()[task.b];
+  if (na.is_leaf() && nb.is_leaf()) {
+    on_leaves(task);
+  } else if (nb.is_leaf() || (!na.is_leaf() && face_count(ta, task.a) >= face_count(tb, task.b))) {
+    push(Task{task.a + 1, task.b, false, false});
+    push(Task{na.right, task.b, false, false});
+  } else {
+    push(Task{task.a, task.b + 1, false, false});
+    push(Task{task.a, nb.right, false, false});
+  }
+}
+
+template <class Overlap, class LeafWork>
+void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& root, const LeafWork& leaf_work,
+            const TraversalSettings& settings, CandidateSet& out, TraversalStats& stats) {
+  // Breadth-first expansion into independent tasks; leaf tasks are kept as tasks.
+  std::vector<Task> tasks{root};
+  while (settings.parallel && tasks.size() < kTargetTasks) {
+    std::vector<Task> next;
+    bool expanded = false;
+    for (const Task& task : tasks) {
+      const bool leaves = task.self ? ta.nodes()[task.a].is_leaf()
+                                    : ta.nodes()[task.a].is_leaf() && tb.nodes()[task.b].is_leaf();
+      if (leaves) {
+        next.push_back(task);
+        continue;
+      }
+      expanded = true;
+      step(ta, tb, overlap, task, stats, [&](const Task& t) { next.push_back(t); }, [](const Task&) {});
+    }
+    tasks.swap(next);
+    if (!expanded) break;
+  }
+
+  auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
+    std::vector<Task> stack{first};
+    while (!stack.empty()) {
+      const Task task = stack.back();
+      stack.pop_back();
+      step(ta, tb, overlap, task, task_stats, [&](const Task& t) { stack.push_back(t); },
+           [&](const Task& t) { leaf_work(t, task_out, task_stats); });
+    }
+  };
+
+  if (!settings.parallel || tasks.size() == 1) {
+    for (const Task& task : tasks) run(task, out, stats);
+    return;
+  }
+  std::vector<CandidateSet> outputs(tasks.size());
+  std::vector<TraversalStats> task_stats(tasks.size());
+  tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t i) { run(tasks[i], outputs[i], task_stats[i]); });
+  std::size_t vf = out.vertex_face.size(), ee = out.edge_edge.size();
+  for (const CandidateSet& o : outputs) {
+    vf += o.vertex_face.size();
+    ee += o.edge_edge.size();
+  }
+  out.vertex_face.reserve(vf);
+  out.edge_edge.reserve(ee);
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    out.vertex_face.insert(out.vertex_face.end(), outputs[i].vertex_face.begin(), outputs[i].vertex_face.end());
+    out.edge_edge.insert(out.edge_edge.end(), outputs[i].edge_edge.begin(), outputs[i].edge_edge.end());
+    stats.add(task_stats[i]);
+  }
+}
+
+void check_view(const BodyView& view, bool needs_bvh) {
+  if (view.topology == nullptr || view.boxes == nullptr || (needs_bvh && view.bvh == nullptr)) {
+    throw std::invalid_argument("broad phase: body " + std::to_string(view.body) + " is missing its data");
+  }
+  if (needs_bvh && view.bvh->nodes().empty()) {
+    throw std::invalid_argument("broad phase: the hierarchy of body " + std::to_string(view.body) + " is not built");
+  }
+}
+
+}  // namespace
+
+FlatBox body_box(const BodyView& body) {
+  FlatBox b = empty_flat_box();
+  for (const FlatBox& v : body.boxes->vertices) b.expand(v);
+  return b;
+}
+
+void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats) {
+  check_view(body, true);
+  TraversalStats local;
+  const Bvh& t = *body.bvh;
+  auto leaf_work = [&body](const Task& task, CandidateSet& o, TraversalStats& s) {
+    leaf_pair_within(body, task.a, task.b, o, s);
+  };
+  const Task root{0, 0, true, true};
+  if (t.settings().volume == VolumeKind::Sphere) {
+    search(t, t, SphereSphere{&t, &t}, root, leaf_work, settings, out, local);
+  } else if (t.settings().volume == VolumeKind::Aabb) {
+    search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, out, local);
+  } else {
+    throw std::invalid_argument("broad phase: self-collision search needs an AABB or sphere hierarchy");
+  }
+  if (stats != nullptr) stats->add(local);
+}
+
+void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats) {
+  check_view(a, true);
+  check_view(b, true);
+  TraversalStats local;
+  const Bvh& ta = *a.bvh;
+  const Bvh& tb = *b.bvh;
+  auto leaf_work = [&a, &b](const Task& task, CandidateSet& o, TraversalStats& s) {
+    leaf_pair_between(a, b, task.a, task.b, o, s);
+  };
+  const VolumeKind ka = ta.settings().volume, kb = tb.settings().volume;
+  if (ka == VolumeKind::Sphere && kb == VolumeKind::Sphere) {
+    // Root-node double box: sphere first, the AABBs only when the spheres overlap, the descent only after both.
+    local.volume_tests += 1;
+    if (ta.spheres()[0].overlaps(tb.spheres()[0])) {
+      local.root_sphere_overlap = true;
+      local.volume_tests += 1;
+      if (body_box(a).overlaps(body_box(b))) {
+        local.root_aabb_overlap = true;
+        search(ta, tb, SphereSphere{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, out, local);
+      }
+    }
+  } else if (ka == VolumeKind::Aabb && kb == VolumeKind::Aabb) {
+    search(ta, tb, BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, out, local);
+  } else if (ka == VolumeKind::Aabb && kb == VolumeKind::Obb) {
+    search(ta, tb, BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, out, local);
+  } else {
+    throw std::invalid_argument("broad phase: unsupported pair of hierarchy volumes (use AABB-AABB, sphere-sphere or "
+                                "AABB-OBB)");
+  }
+  if (stats != nullptr) stats->add(local);
+}
+
+void brute_force_self_candidates(const BodyView& body, CandidateSet& out) {
+  check_view(body, false);
+  const BodyTopology& topo = *body.topology;
+  const SweptBoxes& boxes = *body.boxes;
+  for (int v = 0; v < topo.vertex_count; ++v) {
+    if (topo.vertex_owner[v] < 0) continue;
+    for (int f = 0; f < topo.face_count(); ++f) {
+      if (!topo.face_has_vertex(f, v) && boxes.vertices[v].overlaps(boxes.faces[f])) {
+        out.vertex_face.push_back({body.body, v, body.body, f});
+      }
+    }
+  }
+  for (int e = 0; e < topo.edge_count(); ++e) {
+    for (int g = e + 1; g < topo.edge_count(); ++g) {
+      if (!topo.edges_share_vertex(e, g) && boxes.edges[e].overlaps(boxes.edges[g])) {
+        out.edge_edge.push_back({body.body, e, body.body, g});
+      }
+    }
+  }
+}
+
+void brute_force_pair_candidates(const BodyView& a, const BodyView& b, CandidateSet& out) {
+  check_view(a, false);
+  check_view(b, false);
+  auto vertices_against_faces = [&out](const BodyView& vb, const BodyView& fb) {
+    for (int v = 0; v < vb.topology->vertex_count; ++v) {
+      if (vb.topology->vertex_owner[v] < 0) continue;
+      for (int f = 0; f < fb.topology->face_count(); ++f) {
+        if (vb.boxes->vertices[v].overlaps(fb.boxes->faces[f])) out.vertex_face.push_back({vb.body, v, fb.body, f});
+      }
+    }
+  };
+  vertices_against_faces(a, b);
+  vertices_against_faces(b, a);
+  for (int e = 0; e < a.topology->edge_count(); ++e) {
+    for (int g = 0; g < b.topology->edge_count(); ++g) {
+      if (a.boxes->edges[e].overlaps(b.boxes->edges[g])) out.edge_edge.push_back({a.body, e, b.body, g});
+    }
+  }
+}
+
+}  // namespace clothcd::broadphase

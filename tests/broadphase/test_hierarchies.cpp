@@ -1,0 +1,210 @@
+// Every hierarchy returns exactly the brute-force pairs whose swept boxes overlap: cloth self-collision and cloth vs
+// obstacle, on seeded random motions of a cloth over a sphere and a box, and on random triangle soups.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "broadphase_scenes.hpp"
+#include "clothcd/broadphase/candidates.hpp"
+#include "clothcd/mesh/mesh_generators.hpp"
+
+using namespace clothcd;
+using namespace clothcd::broadphase;
+using namespace clothcd::test;
+
+namespace {
+
+struct KindPair {
+  VolumeKind cloth;
+  VolumeKind obstacle;
+};
+
+CandidateSet sorted(CandidateSet set) {
+  sort_candidates(set);
+  return set;
+}
+
+bool has_duplicates(const CandidateSet& set) {
+  return std::adjacent_find(set.vertex_face.begin(), set.vertex_face.end()) != set.vertex_face.end() ||
+         std::adjacent_find(set.edge_edge.begin(), set.edge_edge.end()) != set.edge_edge.end();
+}
+
+void check_same(const CandidateSet& found, const CandidateSet& reference) {
+  CHECK(found.vertex_face.size() == reference.vertex_face.size());
+  CHECK(found.edge_edge.size() == reference.edge_edge.size());
+  CHECK(found.vertex_face == reference.vertex_face);
+  CHECK(found.edge_edge == reference.edge_edge);
+}
+
+TriangleMesh draped_cloth(int n) {
+  TriangleMesh cloth = make_grid(n, n, 2.4, 2.4);
+  // Bend the grid over the obstacle so that it folds near itself and touches the obstacle.
+  for (Eigen::Index v = 0; v < cloth.vertex_count(); ++v) {
+    const double x = cloth.vertices(v, 0), z = cloth.vertices(v, 2);
+    cloth.vertices(v, 1) = 1.02 - 0.5 * (x * x + z * z);
+  }
+  return cloth;
+}
+
+}  // namespace
+
+TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[broadphase][brute-force]") {
+  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const int leaf = GENERATE(1, 3);
+  const bool parallel = GENERATE(false, true);
+  const int seed = GENERATE(1, 2, 3);
+  const bool sphere_obstacle = seed != 2;
+  std::mt19937 rng(seed);
+  const TriangleMesh cloth = draped_cloth(13);
+  const TriangleMesh obstacle = sphere_obstacle ? make_uv_sphere(1.0, 14, 8) : make_box(Eigen::Vector3d(0.8, 0.9, 0.7));
+  const double thickness = 0.01 * seed;
+  TestBody cloth_body(cloth, jitter(cloth.vertices, 0.08, rng), thickness, {kinds.cloth, leaf});
+  TestBody obstacle_body(obstacle, jitter(obstacle.vertices, 0.02, rng), thickness, {kinds.obstacle, leaf});
+
+  CandidateSet reference;
+  brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), reference);
+  REQUIRE(reference.size() > 0);  // the scene must exercise the search
+  CandidateSet found;
+  TraversalStats stats;
+  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), {parallel}, found, &stats);
+  CHECK_FALSE(has_duplicates(sorted(found)));
+  check_same(sorted(found), sorted(reference));
+
+  // Self-collision uses the cloth side's volume (AABB or sphere).
+  CandidateSet self_reference;
+  brute_force_self_candidates(cloth_body.view(0), self_reference);
+  REQUIRE(self_reference.size() > 0);
+  CandidateSet self_found;
+  find_self_candidates(cloth_body.view(0), {parallel}, self_found);
+  CHECK_FALSE(has_duplicates(sorted(self_found)));
+  check_same(sorted(self_found), sorted(self_reference));
+}
+
+TEST_CASE("hierarchies match brute force after refits and rebuilds", "[broadphase][brute-force][refit]") {
+  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  std::mt19937 rng(7);
+  const TriangleMesh cloth = draped_cloth(11);
+  const TriangleMesh obstacle = make_uv_sphere(1.0, 12, 7);
+  TestBody cloth_body(cloth, cloth.vertices, 0.0, {kinds.cloth, 2, 1.5});
+  TestBody obstacle_body(obstacle, obstacle.vertices, 0.0, {kinds.obstacle, 2, 1.5});
+  Vertices cloth_now = cloth.vertices;
+  Vertices obstacle_now = obstacle.vertices;
+  for (int step = 0; step < 6; ++step) {
+    const Vertices cloth_next = jitter(cloth_now, 0.05 * (step + 1), rng);
+    Vertices obstacle_next = obstacle_now;
+    obstacle_next.col(0).array() += 0.03;  // the obstacle slides along x
+    compute_swept_boxes(cloth_body.topology, cloth_now, cloth_next, 0.0, cloth_body.boxes);
+    compute_swept_boxes(obstacle_body.topology, obstacle_now, obstacle_next, 0.0, obstacle_body.boxes);
+    cloth_body.bvh.update(cloth_body.topology, cloth_body.boxes, cloth_now, cloth_next);
+    obstacle_body.bvh.update(obstacle_body.topology, obstacle_body.boxes, obstacle_now, obstacle_next);
+
+    CandidateSet reference, found;
+    brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), reference);
+    find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), {true}, found);
+    check_same(sorted(found), sorted(reference));
+    CandidateSet self_reference, self_found;
+    brute_force_self_candidates(cloth_body.view(0), self_reference);
+    find_self_candidates(cloth_body.view(0), {true}, self_found);
+    check_same(sorted(self_found), sorted(self_reference));
+    cloth_now = cloth_next;
+    obstacle_now = obstacle_next;
+  }
+  // The motion grows every box far beyond its built size, so the rule (ratio 1.5) must have fired.
+  CHECK(cloth_body.bvh.build_count() > 1);
+}
+
+TEST_CASE("hierarchies match brute force on random triangle soups", "[broadphase][brute-force][random]") {
+  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const int seed = GENERATE(range(10, 16));
+  std::mt19937 rng(seed);
+  const TriangleMesh a = random_soup(60, 90, rng);
+  TriangleMesh b = random_soup(50, 70, rng);
+  b.vertices.array() += 0.3;
+  TestBody body_a(a, jitter(a.vertices, 0.05, rng), 0.0, {kinds.cloth, 1 + seed % 3});
+  TestBody body_b(b, jitter(b.vertices, 0.05, rng), 0.001, {kinds.obstacle, 1 + seed % 4});
+
+  CandidateSet reference, found;
+  brute_force_pair_candidates(body_a.view(0), body_b.view(3), reference);
+  find_pair_candidates(body_a.view(0), body_b.view(3), {seed % 2 == 0}, found);
+  check_same(sorted(found), sorted(reference));
+  CandidateSet self_reference, self_found;
+  brute_force_self_candidates(body_a.view(0), self_reference);
+  find_self_candidates(body_a.view(0), {seed % 2 == 1}, self_found);
+  check_same(sorted(self_found), sorted(self_reference));
+}
+
+TEST_CASE("self-collision never pairs primitives that share a vertex", "[broadphase][self]") {
+  // A flat, still grid: every vertex box touches its neighbours' boxes, so only topology can remove adjacent pairs.
+  const TriangleMesh cloth = make_grid(20, 20);
+  TestBody body(cloth, cloth.vertices, 1e-3, {VolumeKind::Aabb, 2});
+  CandidateSet found;
+  find_self_candidates(body.view(0), {true}, found);
+  for (const auto& c : found.vertex_face) CHECK_FALSE(body.topology.face_has_vertex(c.face, c.vertex));
+  for (const auto& c : found.edge_edge) CHECK_FALSE(body.topology.edges_share_vertex(c.edge_a, c.edge_b));
+  // Flat boxes touch along cell borders: a degenerate case for the box tests; still exactly the brute force.
+  CandidateSet reference;
+  brute_force_self_candidates(body.view(0), reference);
+  check_same(sorted(found), sorted(reference));
+  // A naive triangle-pair query would return every adjacent pair; ours returns far fewer pairs than that.
+  CHECK(found.size() < static_cast<std::size_t>(body.topology.face_count()) * 6);
+}
+
+TEST_CASE("the root double box tests the sphere first and the AABB only after it", "[broadphase][double-box]") {
+  // Two thin triangles along the (1, 1, 0) diagonal, the second moved by (1.1, 0.3): the boxes [0, 1]^2 and
+  // [1.1, 2.1] x [0.3, 1.3] are disjoint, but the circumspheres (radius ~0.71, centres 1.14 apart) overlap.
+  auto rod = [](double offset) {
+    TriangleMesh m;
+    m.vertices.resize(3, 3);
+    m.vertices << 0, 0, 0, 1, 1, 0, 1.0, 0.999, 0;
+    m.vertices.col(0).array() += offset;
+    m.vertices.col(1).array() += 0.3 * offset / 1.1;
+    m.faces.resize(1, 3);
+    m.faces << 0, 1, 2;
+    return m;
+  };
+  const TriangleMesh a = rod(0.0), b = rod(1.1);
+  const BvhSettings spheres{VolumeKind::Sphere, 1};
+  TestBody body_a(a, a.vertices, 0.0, spheres), body_b(b, b.vertices, 0.0, spheres);
+  CandidateSet found;
+  TraversalStats stats;
+  find_pair_candidates(body_a.view(0), body_b.view(1), {false}, found, &stats);
+  CHECK(stats.root_sphere_overlap);
+  CHECK_FALSE(stats.root_aabb_overlap);
+  CHECK(found.size() == 0);
+
+  // Far apart: the sphere test alone rejects.
+  TriangleMesh far = rod(0.0);
+  far.vertices.array() += 10.0;
+  TestBody body_far(far, far.vertices, 0.0, spheres);
+  TraversalStats far_stats;
+  find_pair_candidates(body_a.view(0), body_far.view(1), {false}, found, &far_stats);
+  CHECK_FALSE(far_stats.root_sphere_overlap);
+  CHECK(far_stats.volume_tests == 1);
+}
+
+TEST_CASE("rebuild rule: ratio 0 rebuilds every step, infinity never", "[broadphase][refit]") {
+  const TriangleMesh cloth = make_grid(8, 8);
+  std::mt19937 rng(3);
+  TestBody always(cloth, cloth.vertices, 0.0, {VolumeKind::Aabb, 2, 0.0});
+  TestBody never(cloth, cloth.vertices, 0.0, {VolumeKind::Aabb, 2, std::numeric_limits<double>::infinity()});
+  for (int step = 0; step < 3; ++step) {
+    const Vertices next = jitter(cloth.vertices, 0.5, rng);
+    compute_swept_boxes(always.topology, cloth.vertices, next, 0.0, always.boxes);
+    CHECK(always.bvh.update(always.topology, always.boxes, cloth.vertices, next) == BvhUpdate::Rebuilt);
+    CHECK(never.bvh.update(always.topology, always.boxes, cloth.vertices, next) == BvhUpdate::Refitted);
+  }
+  CHECK(always.bvh.build_count() == 4);
+  CHECK(never.bvh.build_count() == 1);
+}
+
+TEST_CASE("unsupported hierarchy pairs are rejected", "[broadphase]") {
+  const TriangleMesh cloth = make_grid(4, 4);
+  TestBody a(cloth, cloth.vertices, 0.0, {VolumeKind::Obb, 2});
+  TestBody b(cloth, cloth.vertices, 0.0, {VolumeKind::Aabb, 2});
+  CandidateSet out;
+  CHECK_THROWS_AS(find_pair_candidates(a.view(0), b.view(1), {}, out), std::invalid_argument);
+  CHECK_THROWS_AS(find_self_candidates(a.view(0), {}, out), std::invalid_argument);
+}
