@@ -3,21 +3,16 @@
 /// The library entry point for a simulation loop: give it the cloth topology and the obstacles once, then per step the
 /// cloth positions at the start and end of the step; it returns every colliding vertex-face and edge-edge pair.
 
+#include <Eigen/Geometry>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "clothcd/broadphase/hierarchy_kind.hpp"
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd {
-
-/// Which bounding volume hierarchy finds candidate pairs.
-enum class HierarchyKind {
-  SphereRootAabb,  ///< Sphere BVH whose root also carries an AABB (the paper's root-node double bounding box).
-  Aabb,            ///< Plain AABB BVH.
-  AabbObb,         ///< AABBs on the cloth side, OBBs on the obstacle side.
-};
 
 /// Which culling runs on candidate pairs before the exact CCD.
 enum class CullingMode {
@@ -25,7 +20,7 @@ enum class CullingMode {
   NonPenetration,  ///< The algebraic (Bernstein) non-penetration filter.
   Projection,      ///< The spatial linear projection filter.
   Filters,         ///< Both filters, cheaper first.
-  Network,         ///< The learned network (with its conservative safety check).
+  Network,         ///< The learned network (not available yet: the detector throws std::invalid_argument).
 };
 
 /// Detector settings; defaults are what a cloth simulation wants.
@@ -35,6 +30,9 @@ struct DetectorSettings {
   double thickness = 0.0;       ///< Minimum separation (scene units); pairs closer than this count as colliding.
   bool self_collision = true;   ///< Also test the cloth against itself.
   std::string model_path;       ///< Network model for CullingMode::Network (empty: the committed default model).
+  int max_leaf_faces = 2;       ///< Triangles per hierarchy leaf (>= 1).
+  double rebuild_ratio = 2.0;   ///< Hierarchy rebuild rule, see broadphase::BvhSettings::rebuild_ratio.
+  bool parallel = true;         ///< Use TBB threads (results are identical and in the same order either way).
 };
 
 /// Counts and times of the last detect() call.
@@ -47,6 +45,7 @@ struct DetectionStats {
   double traversal_ms = 0;          ///< Time to find candidate pairs.
   double culling_ms = 0;            ///< Time in the culling stage.
   double exact_ms = 0;              ///< Time in the exact CCD.
+  int rebuilds = 0;                 ///< Hierarchies rebuilt (not just refitted) in this step.
 };
 
 /// Continuous collision detection between a cloth and obstacles, step after step.
@@ -63,7 +62,18 @@ class CollisionDetector {
   int add_obstacle(const TriangleMesh& mesh);
 
   /// Sets the positions of obstacle `body` at the start and end of the next step (a moving obstacle); both #V x 3.
+  /// After that step the obstacle rests at `end` until set again. Throws std::invalid_argument on an unknown body,
+  /// wrong sizes or non-finite coordinates.
   void set_obstacle_positions(int body, const Vertices& start, const Vertices& end);
+
+  /// Moves obstacle `body` rigidly over the next step: its mesh as added, transformed by `start` and by `end`.
+  void set_obstacle_transforms(int body, const Eigen::Isometry3d& start, const Eigen::Isometry3d& end);
+
+  /// Number of obstacles added.
+  [[nodiscard]] int obstacle_count() const;
+
+  /// The unique edges of `body` (0 = cloth) as 2 vertex indices each: what Collision::vertices of an edge-edge pair use.
+  [[nodiscard]] const std::vector<int>& edges(int body) const;
 
   /// Finds every collision of the step: cloth positions `start` and `end` (#V x 3 each, finite).
   /// The returned reference stays valid until the next call.

@@ -1,0 +1,292 @@
+// The detector of a simulation step (Jin et al., section 3): swept boxes and hierarchy refit (section 3.2), candidate
+// search of cloth vs obstacles and cloth vs itself, culling by the algebraic non-penetration and spatial projection
+// filters (sections 2.2, 2.3), then the exact-safe continuous collision test of every surviving pair.
+#include "clothcd/detection/collision_detector.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/bvh.hpp"
+#include "clothcd/broadphase/candidates.hpp"
+#include "clothcd/broadphase/swept_boxes.hpp"
+#include "clothcd/broadphase/traversal.hpp"
+#include "clothcd/ccd/ccd.hpp"
+
+namespace clothcd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+struct Body {
+  broadphase::BodyTopology topology;
+  Vertices rest;   // obstacles: the mesh as added
+  Vertices start;  // obstacles: positions of the coming step
+  Vertices end;
+  broadphase::SweptBoxes boxes;
+  broadphase::Bvh bvh;
+  bool stale = true;    // boxes and hierarchy must be recomputed before the next search
+  bool moving = false;  // positions were set for the coming step only
+};
+
+broadphase::BvhSettings bvh_settings(const DetectorSettings& settings, bool obstacle) {
+  broadphase::BvhSettings s;
+  s.max_leaf_faces = settings.max_leaf_faces;
+  s.rebuild_ratio = settings.rebuild_ratio;
+  switch (settings.hierarchy) {
+    case HierarchyKind::SphereRootAabb: s.volume = broadphase::VolumeKind::Sphere; break;
+    case HierarchyKind::Aabb: s.volume = broadphase::VolumeKind::Aabb; break;
+    case HierarchyKind::AabbObb: s.volume = obstacle ? broadphase::VolumeKind::Obb : broadphase::VolumeKind::Aabb; break;
+  }
+  return s;
+}
+
+ccd::CcdFilter ccd_filter(CullingMode mode) {
+  switch (mode) {
+    case CullingMode::None: return ccd::CcdFilter::None;
+    case CullingMode::NonPenetration: return ccd::CcdFilter::NonPenetration;
+    case CullingMode::Projection: return ccd::CcdFilter::Projection;
+    case CullingMode::Filters: return ccd::CcdFilter::Combined;
+    case CullingMode::Network: break;
+  }
+  throw std::invalid_argument("network culling not available yet");
+}
+
+void check_positions(const Vertices& positions, Eigen::Index rows, const std::string& what) {
+  if (positions.rows() != rows) {
+    throw std::invalid_argument(what + " has " + std::to_string(positions.rows()) + " rows, expected " +
+                                std::to_string(rows));
+  }
+  if (!positions.allFinite()) throw std::invalid_argument(what + " has a NaN or infinite coordinate");
+}
+
+// Runs `body(i)` for i in [0, n), on TBB threads when asked.
+template <class Function>
+void for_each_index(std::size_t n, bool parallel, const Function& body) {
+  if (!parallel || n < 512) {
+    for (std::size_t i = 0; i < n; ++i) body(i);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
+  });
+}
+
+}  // namespace
+
+struct CollisionDetector::Impl {
+  DetectorSettings settings;
+  ccd::CcdFilter filter = ccd::CcdFilter::None;
+  Body cloth;
+  std::vector<Body> obstacles;
+  broadphase::CandidateSet candidates;
+  std::vector<ccd::CcdQuery> queries;
+  std::vector<std::uint8_t> keep;
+  std::vector<ccd::CcdResult> results;
+  std::vector<std::array<VertexRef, 4>> refs;
+  std::vector<Collision> collisions;
+  DetectionStats stats;
+
+  Body& obstacle(int body, const char* caller) {
+    if (body < 1 || body > static_cast<int>(obstacles.size())) {
+      throw std::invalid_argument(std::string(caller) + ": no obstacle with body id " + std::to_string(body));
+    }
+    return obstacles[body - 1];
+  }
+
+  const Vertices& start_of(int body, const Vertices& cloth_start) const {
+    return body == 0 ? cloth_start : obstacles[body - 1].start;
+  }
+  const Vertices& end_of(int body, const Vertices& cloth_end) const {
+    return body == 0 ? cloth_end : obstacles[body - 1].end;
+  }
+  const broadphase::BodyTopology& topology_of(int body) const {
+    return body == 0 ? cloth.topology : obstacles[body - 1].topology;
+  }
+
+  void refit(const Vertices& start, const Vertices& end) {
+    const double thickness = settings.thickness;
+    broadphase::compute_swept_boxes(cloth.topology, start, end, thickness, cloth.boxes);
+    if (cloth.bvh.update(cloth.topology, cloth.boxes, start, end) == broadphase::BvhUpdate::Rebuilt) ++stats.rebuilds;
+    for (Body& o : obstacles) {
+      if (!o.stale) continue;
+      broadphase::compute_swept_boxes(o.topology, o.start, o.end, thickness, o.boxes);
+      if (o.bvh.update(o.topology, o.boxes, o.start, o.end) == broadphase::BvhUpdate::Rebuilt) ++stats.rebuilds;
+      o.stale = false;
+    }
+  }
+
+  void search() {
+    candidates.clear();
+    const broadphase::TraversalSettings traversal{settings.parallel};
+    const broadphase::BodyView cloth_view{0, &cloth.topology, &cloth.boxes, &cloth.bvh};
+    if (settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, candidates);
+    for (std::size_t k = 0; k < obstacles.size(); ++k) {
+      const Body& o = obstacles[k];
+      const broadphase::BodyView view{static_cast<int>(k) + 1, &o.topology, &o.boxes, &o.bvh};
+      broadphase::find_pair_candidates(cloth_view, view, traversal, candidates);
+    }
+    broadphase::sort_candidates(candidates);
+  }
+
+  // Fills the CCD queries and, in the same order, the vertex references of each candidate.
+  void gather(const Vertices& start, const Vertices& end, std::vector<std::array<VertexRef, 4>>& refs) {
+    const std::size_t vf = candidates.vertex_face.size();
+    const std::size_t total = vf + candidates.edge_edge.size();
+    queries.resize(total);
+    refs.resize(total);
+    for_each_index(total, settings.parallel, [&](std::size_t i) {
+      std::array<VertexRef, 4>& r = refs[i];
+      ccd::CcdQuery& q = queries[i];
+      if (i < vf) {
+        const auto& c = candidates.vertex_face[i];
+        const auto& faces = topology_of(c.face_body).faces;
+        r = {VertexRef{c.vertex_body, c.vertex}, VertexRef{c.face_body, faces(c.face, 0)},
+             VertexRef{c.face_body, faces(c.face, 1)}, VertexRef{c.face_body, faces(c.face, 2)}};
+        q.kind = PairKind::VertexFace;
+      } else {
+        const auto& c = candidates.edge_edge[i - vf];
+        const auto& ea = topology_of(c.body_a).edges;
+        const auto& eb = topology_of(c.body_b).edges;
+        r = {VertexRef{c.body_a, ea[2 * c.edge_a]}, VertexRef{c.body_a, ea[2 * c.edge_a + 1]},
+             VertexRef{c.body_b, eb[2 * c.edge_b]}, VertexRef{c.body_b, eb[2 * c.edge_b + 1]}};
+        q.kind = PairKind::EdgeEdge;
+      }
+      for (int k = 0; k < 4; ++k) {
+        q.start[k] = start_of(r[k].body, start).row(r[k].vertex).transpose();
+        q.end[k] = end_of(r[k].body, end).row(r[k].vertex).transpose();
+      }
+    });
+  }
+
+  void narrow_phase(const Vertices& start, const Vertices& end) {
+    // Gathering the pairs' positions counts as culling time: it is the batch the filters read.
+    auto t = Clock::now();
+    gather(start, end, refs);
+    const ccd::CcdSettings ccd_settings{settings.thickness};
+    const std::size_t total = queries.size();
+    keep.resize(total);
+    for_each_index(total, settings.parallel, [&](std::size_t i) {
+      keep[i] = ccd::filter_culls(filter, queries[i], ccd_settings) ? 0 : 1;
+    });
+    stats.culling_ms = milliseconds_since(t);
+
+    t = Clock::now();
+    results.resize(total);
+    for_each_index(total, settings.parallel, [&](std::size_t i) {
+      results[i] = keep[i] ? ccd::continuous_collision(queries[i], ccd_settings) : ccd::CcdResult{};
+    });
+    collisions.clear();
+    long kept = 0;
+    for (std::size_t i = 0; i < total; ++i) {
+      kept += keep[i];
+      if (!results[i].hit) continue;
+      Collision c;
+      c.kind = queries[i].kind;
+      c.vertices = refs[i];
+      c.toi = results[i].toi;
+      c.parameters = results[i].parameters;
+      c.normal = results[i].normal;
+      c.conservative = results[i].state == ccd::CcdState::ConservativeHit;
+      collisions.push_back(c);
+    }
+    stats.exact_ms = milliseconds_since(t);
+    stats.culled = static_cast<long>(total) - kept;
+    stats.collisions = static_cast<long>(collisions.size());
+  }
+};
+
+CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
+  if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness)) {
+    throw std::invalid_argument("collision detector: the thickness must be finite and >= 0");
+  }
+  if (settings.max_leaf_faces < 1) throw std::invalid_argument("collision detector: max_leaf_faces must be >= 1");
+  impl_->filter = ccd_filter(settings.culling);
+  impl_->settings = settings;
+  impl_->cloth.topology = broadphase::build_body_topology(cloth_faces, cloth_vertex_count);
+  impl_->cloth.bvh = broadphase::Bvh(bvh_settings(settings, false));
+}
+
+CollisionDetector::~CollisionDetector() = default;
+CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
+CollisionDetector& CollisionDetector::operator=(CollisionDetector&&) noexcept = default;
+
+int CollisionDetector::add_obstacle(const TriangleMesh& mesh) {
+  if (!mesh.vertices.allFinite()) throw std::invalid_argument("add_obstacle: the mesh has a NaN or infinite coordinate");
+  Body body;
+  body.topology = broadphase::build_body_topology(mesh.faces, static_cast<int>(mesh.vertex_count()));
+  body.rest = mesh.vertices;
+  body.start = mesh.vertices;
+  body.end = mesh.vertices;
+  body.bvh = broadphase::Bvh(bvh_settings(impl_->settings, true));
+  impl_->obstacles.push_back(std::move(body));
+  return static_cast<int>(impl_->obstacles.size());
+}
+
+void CollisionDetector::set_obstacle_positions(int body, const Vertices& start, const Vertices& end) {
+  Body& o = impl_->obstacle(body, "set_obstacle_positions");
+  check_positions(start, o.rest.rows(), "set_obstacle_positions: start");
+  check_positions(end, o.rest.rows(), "set_obstacle_positions: end");
+  o.start = start;
+  o.end = end;
+  o.stale = true;
+  o.moving = true;
+}
+
+void CollisionDetector::set_obstacle_transforms(int body, const Eigen::Isometry3d& start, const Eigen::Isometry3d& end) {
+  Body& o = impl_->obstacle(body, "set_obstacle_transforms");
+  if (!start.matrix().allFinite() || !end.matrix().allFinite()) {
+    throw std::invalid_argument("set_obstacle_transforms: a transform has a NaN or infinite entry");
+  }
+  o.start = (o.rest * start.linear().transpose()).rowwise() + start.translation().transpose();
+  o.end = (o.rest * end.linear().transpose()).rowwise() + end.translation().transpose();
+  o.stale = true;
+  o.moving = true;
+}
+
+int CollisionDetector::obstacle_count() const { return static_cast<int>(impl_->obstacles.size()); }
+
+const std::vector<int>& CollisionDetector::edges(int body) const {
+  if (body == 0) return impl_->cloth.topology.edges;
+  return impl_->obstacle(body, "edges").topology.edges;
+}
+
+const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, const Vertices& end) {
+  Impl& d = *impl_;
+  check_positions(start, d.cloth.topology.vertex_count, "detect: cloth start positions");
+  check_positions(end, d.cloth.topology.vertex_count, "detect: cloth end positions");
+  d.stats = DetectionStats{};
+
+  auto t = Clock::now();
+  d.refit(start, end);
+  d.stats.refit_ms = milliseconds_since(t);
+
+  t = Clock::now();
+  d.search();
+  d.stats.traversal_ms = milliseconds_since(t);
+  d.stats.candidates_vertex_face = static_cast<long>(d.candidates.vertex_face.size());
+  d.stats.candidates_edge_edge = static_cast<long>(d.candidates.edge_edge.size());
+
+  d.narrow_phase(start, end);
+
+  // A moved obstacle rests at its end positions from the next step on, unless it is moved again.
+  for (Body& o : d.obstacles) {
+    if (!o.moving) continue;
+    o.start = o.end;
+    o.moving = false;
+    o.stale = true;
+  }
+  return d.collisions;
+}
+
+const DetectionStats& CollisionDetector::stats() const { return impl_->stats; }
+
+}  // namespace clothcd
