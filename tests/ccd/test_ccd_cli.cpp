@@ -1,0 +1,66 @@
+// `clothcd ccd` on small generated query files: summary counts, JSON, per-query output and one-line errors.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "support/test_support.hpp"
+
+using clothcd::test::run_cli;
+using clothcd::test::TempDir;
+using clothcd::test::write_file;
+
+namespace {
+
+// Eight rows of one vertex-face query: the vertex at (1/4, 1/4) drops from z = 1 to z_end over the unit triangle.
+std::string vertex_face_query(const std::string& z_end, int truth) {
+  const std::string t = "," + std::to_string(truth) + "\n";
+  return "1,4,1,4,1,1" + t + "0,1,0,1,0,1" + t + "1,1,0,1,0,1" + t + "0,1,1,1,0,1" + t + "1,4,1,4," + z_end + t +
+         "0,1,0,1,0,1" + t + "1,1,0,1,0,1" + t + "0,1,1,1,0,1" + t;
+}
+
+}  // namespace
+
+TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "vertex-face");
+  // Colliding (ends below the face), separated (stops at z = 1/2), and a false ground truth of 0 for a colliding one.
+  write_file(dir / "vertex-face/a.csv", vertex_face_query("-1,1", 1) + vertex_face_query("1,2", 0));
+  write_file(dir / "vertex-face/b.csv", vertex_face_query("-1,2", 0));
+  const auto run = run_cli("ccd '" + dir.path().string() + "' --filter combined --per-query '" +
+                           (dir / "out.csv").string() + "'");
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(run.output, Catch::Contains("queries:               3"));
+  CHECK_THAT(run.output, Catch::Contains("colliding:             2"));
+  CHECK_THAT(run.output, Catch::Contains("false positives:       1"));
+  CHECK_THAT(run.output, Catch::Contains("false negatives:       0"));
+  std::ifstream per_query(dir / "out.csv");
+  std::stringstream buffer;
+  buffer << per_query.rdbuf();
+  const std::string lines = buffer.str();
+  CHECK_THAT(lines, Catch::StartsWith("file,line,kind,truth,hit,state,toi,culled\n"));
+  CHECK(std::count(lines.begin(), lines.end(), '\n') == 4);
+
+  const auto json = run_cli("ccd '" + (dir / "vertex-face/a.csv").string() + "' --json --thickness 0.01");
+  REQUIRE(json.exit_code == 0);
+  CHECK_THAT(json.output, Catch::StartsWith("{") && Catch::Contains("\"queries\": 2") &&
+                              Catch::Contains("\"false_negatives\": 0"));
+}
+
+TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cli][errors]") {
+  TempDir dir;
+  write_file(dir / "bad.csv", "1,1,1,1,1\n");
+  const auto columns = run_cli("ccd '" + (dir / "bad.csv").string() + "' --type vf");
+  CHECK(columns.exit_code == 1);
+  CHECK_THAT(columns.output, Catch::StartsWith("clothcd: error: ") && Catch::Contains("bad.csv:1:"));
+  CHECK(columns.output.find('\n') == columns.output.size() - 1);
+  write_file(dir / "short.csv", vertex_face_query("-1,1", 1).substr(0, 20) + "\n");
+  CHECK(run_cli("ccd '" + (dir / "short.csv").string() + "' --type vf").exit_code == 1);
+  write_file(dir / "ok.csv", vertex_face_query("-1,1", 1));
+  CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "'").exit_code == 1);  // no --type, no kind folder
+  CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type xx").exit_code == 1);
+  CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --filter network").exit_code == 1);
+  CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness -1").exit_code == 1);
+  CHECK(run_cli("ccd '" + (dir / "missing").string() + "'").exit_code == 1);
+}

@@ -1,0 +1,81 @@
+// The benchmark CSV reader: exact big-integer rationals, kind from the folder, and clear errors naming file and line.
+#include <catch2/catch.hpp>
+
+#include "clothcd/ccd/query_file.hpp"
+#include "support/test_support.hpp"
+
+using clothcd::PairKind;
+using clothcd::test::TempDir;
+using clothcd::test::write_file;
+namespace ccd = clothcd::ccd;
+
+namespace {
+
+// One vertex-face query: the vertex drops through the unit triangle (colliding, truth 1).
+const char* const kQuery =
+    "1,4,1,4,1,1,1\n0,1,0,1,0,1,1\n1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n"
+    "1,4,1,4,-1,1,1\n0,1,0,1,0,1,1\n1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n";
+
+std::string error_of(const std::string& path) {
+  try {
+    (void)ccd::read_queries(path);
+  } catch (const ccd::QueryFileError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("reads rationals, ground truth and the pair kind from the folder", "[ccd][query-file]") {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "scene/vertex-face");
+  const auto file = write_file(dir / "scene/vertex-face/q.csv", kQuery);
+  const auto records = ccd::read_queries(dir.path().string());
+  REQUIRE(records.size() == 1);
+  const ccd::QueryRecord& record = records[0];
+  CHECK(record.query.kind == PairKind::VertexFace);
+  CHECK(record.truth == 1);
+  CHECK(record.line == 1);
+  CHECK(record.exactly_representable);
+  CHECK(record.query.start[0] == Eigen::Vector3d(0.25, 0.25, 1));
+  CHECK(record.query.end[0] == Eigen::Vector3d(0.25, 0.25, -1));
+  CHECK(record.rational[4][2] == ccd::RationalText{"-1", "1"});
+  CHECK(ccd::exact_collision_reference(record.query.kind, record.rational));
+  CHECK(ccd::continuous_collision(record.query).hit);
+}
+
+TEST_CASE("big integers become exact rationals and the nearest double", "[ccd][query-file]") {
+  TempDir dir;
+  // 2^100 / 2^102 = 1/4 exactly; 1/3 is not a double (rounded to nearest, flagged inexact).
+  std::string text = "1267650600228229401496703205376,5070602400912917605986812821504,1,3,0,1\n";
+  for (int i = 1; i < 8; ++i) text += "0,1,0,1,0,1\n";
+  const auto records = ccd::read_query_file(write_file(dir / "q.csv", text).string(), PairKind::EdgeEdge);
+  REQUIRE(records.size() == 1);
+  CHECK(records[0].query.start[0].x() == 0.25);
+  CHECK(records[0].query.start[0].y() == 1.0 / 3.0);
+  CHECK_FALSE(records[0].exactly_representable);
+  CHECK(records[0].truth == -1);
+}
+
+TEST_CASE("malformed query files are errors naming the file and line", "[ccd][query-file][errors]") {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "edge-edge");
+  const auto path = [&](const char* name) { return (dir / "edge-edge" / name).string(); };
+  write_file(path("columns.csv"), "1,1,1,1,1\n");
+  CHECK_THAT(error_of(path("columns.csv")), Catch::Contains("columns.csv:1:") && Catch::Contains("found 5 columns"));
+  write_file(path("zero.csv"), std::string(kQuery).replace(0, 3, "1,0"));
+  CHECK_THAT(error_of(path("zero.csv")), Catch::Contains("zero.csv:1:") && Catch::Contains("zero denominator"));
+  write_file(path("text.csv"), "1,1,x,1,1,1\n");
+  CHECK_THAT(error_of(path("text.csv")), Catch::Contains("text.csv:1:") && Catch::Contains("not an integer"));
+  write_file(path("float.csv"), "1,1,1.5,1,1,1\n");
+  CHECK_THAT(error_of(path("float.csv")), Catch::Contains("not an integer"));
+  write_file(path("rows.csv"), std::string(kQuery) + "1,1,1,1,1,1,1\n");
+  CHECK_THAT(error_of(path("rows.csv")), Catch::Contains("rows.csv") && Catch::Contains("not a multiple of 8"));
+  write_file(path("truth.csv"), std::string(kQuery).replace(12, 1, "2"));
+  CHECK_THAT(error_of(path("truth.csv")), Catch::Contains("truth.csv:1:") && Catch::Contains("0 or 1"));
+  CHECK_THAT(error_of((dir / "missing.csv").string()), Catch::Contains("no such file"));
+  // No --type and no vertex-face/edge-edge folder: the kind is unknown.
+  write_file(dir / "plain.csv", kQuery);
+  CHECK_THAT(error_of((dir / "plain.csv").string()), Catch::Contains("pair type unknown"));
+}
