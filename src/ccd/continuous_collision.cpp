@@ -346,7 +346,9 @@ CcdResult contact_without_thickness(const CcdQuery& query) {
     if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
   }
   const exact::ExactAnswer answer = exact::exact_collision(query.kind, rational_points(query));
-  return answer.hit ? make_hit(query, answer.toi, CcdState::Hit) : CcdResult{};
+  CcdResult result = answer.hit ? make_hit(query, answer.toi, CcdState::Hit) : CcdResult{};
+  result.exact_fallback = true;
+  return result;
 }
 
 }  // namespace
@@ -373,7 +375,10 @@ CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& setting
           PieceOutcome::Clear) {
     const double toi = fits_fast_path(query) ? search.toi : 0.0;
     const CcdResult touching = contact_without_thickness(query);
-    return make_hit(query, std::min(toi, touching.toi), touching.hit ? CcdState::Hit : CcdState::ConservativeHit);
+    CcdResult result =
+        make_hit(query, std::min(toi, touching.toi), touching.hit ? CcdState::Hit : CcdState::ConservativeHit);
+    result.exact_fallback = touching.exact_fallback;
+    return result;
   }
   return CcdResult{};
 }

@@ -156,7 +156,7 @@ std::vector<QueryRecord> read_queries(const std::string& path, std::optional<Pai
   if (!fs::exists(path, error)) throw QueryFileError(path, 0, "no such file or folder");
   if (!fs::is_directory(path, error)) return read_query_file(path, kind);
   std::vector<std::string> files;
-  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(path))
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(path, fs::directory_options::follow_directory_symlink))
     if (entry.is_regular_file() && entry.path().extension() == ".csv") files.push_back(entry.path().string());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw QueryFileError(path, 0, "folder holds no .csv query files");

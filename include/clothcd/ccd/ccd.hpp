@@ -49,6 +49,7 @@ struct CcdResult {
   /// Approximate (evaluated at toi); {0, 0} when unknown.
   std::array<double, 2> parameters{};
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi (zero when unknown or degenerate).
+  bool exact_fallback = false;  ///< True when floating point could not decide and exact rational arithmetic did.
 };
 
 /// Extra options of the projection filter.
