@@ -39,8 +39,12 @@ Rectangle min_area_rectangle(std::vector<Eigen::Vector2d>& points, std::vector<E
   if (n < 3) return best;
   best.area = std::numeric_limits<double>::infinity();
   // Calipers: `right` is the farthest point along the edge, `top` the farthest from the edge's line, `left` the
-  // farthest against the edge direction. Each only moves forward as the edge turns counter-clockwise.
+  // farthest against the edge direction. Each only moves forward as the edge turns counter-clockwise, so each climbs
+  // from its previous position (at most n steps, which also ends plateaus).
   size_t right = 1, top = 1, left = 1;
+  auto climb = [&hull, n](size_t& index, auto&& score) {
+    for (size_t step = 0; step < n && score(hull[(index + 1) % n]) >= score(hull[index]); ++step) index = (index + 1) % n;
+  };
   for (size_t e = 0; e < n; ++e) {
     const Eigen::Vector2d& a = hull[e];
     Eigen::Vector2d d = hull[(e + 1) % n] - a;
@@ -48,14 +52,18 @@ Rectangle min_area_rectangle(std::vector<Eigen::Vector2d>& points, std::vector<E
     if (length == 0) continue;
     d /= length;
     const Eigen::Vector2d up(-d.y(), d.x());
-    while (hull[(right + 1) % n].dot(d) >= hull[right].dot(d) && (right + 1) % n != e) right = (right + 1) % n;
+    const auto along = [&d](const Eigen::Vector2d& p) { return p.dot(d); };
+    const auto against = [&d](const Eigen::Vector2d& p) { return -p.dot(d); };
+    const auto height = [&a, &up](const Eigen::Vector2d& p) { return (p - a).dot(up); };
+    if (e == 0) right = 1;
+    climb(right, along);
     if (e == 0) top = right;
-    while ((hull[(top + 1) % n] - a).dot(up) >= (hull[top] - a).dot(up) && (top + 1) % n != e) top = (top + 1) % n;
+    climb(top, height);
     if (e == 0) left = top;
-    while (hull[(left + 1) % n].dot(d) <= hull[left].dot(d) && (left + 1) % n != e) left = (left + 1) % n;
+    climb(left, against);
     const double width = (hull[right] - hull[left]).dot(d);
-    const double height = (hull[top] - a).dot(up);
-    if (width * height < best.area) best = {width * height, d};
+    const double h = (hull[top] - a).dot(up);
+    if (width * h < best.area) best = {width * h, d};
   }
   return best;
 }

@@ -93,6 +93,7 @@ Eigen::Matrix3d refine_axes(const std::vector<Eigen::Vector3d>& points, Eigen::M
 // Jin et al. eqs. 11-18, then (optionally) refine_axes on S'. `scratch.keep` is left all zero on return.
 Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSettings& settings, ObbScratch& scratch) {
   const Eigen::Index n = v.rows();
+  if (n == 0) return Eigen::Matrix3d::Identity();  // e.g. a model simplified to nothing: the extents still bound it
   const int slabs = settings.slabs;
   auto& keep = scratch.keep;
   keep.resize(static_cast<size_t>(n), 0);

@@ -3,6 +3,8 @@
 #include "clothcd/geometry/simple_bounds.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -100,7 +102,9 @@ Sphere compute_bounding_sphere(const Vertices& points) {
   // Guarantee containment whatever round-off did to the support sets.
   double r2 = 0.0;
   for (const Point& q : p) r2 = std::max(r2, (q - s.center).squaredNorm());
-  s.radius = std::max(s.radius, std::sqrt(r2));
+  double radius = std::sqrt(r2);
+  while (radius * radius < r2) radius = std::nextafter(radius, std::numeric_limits<double>::infinity());
+  s.radius = std::max(s.radius, radius);
   return s;
 }
 
