@@ -4,6 +4,7 @@
 // the polynomial's roots).
 #include "ccd/exact_polynomial.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <utility>
 
@@ -13,6 +14,20 @@ namespace {
 
 Polynomial trimmed(Polynomial p) {
   while (!p.c.empty() && p.c.back() == 0) p.c.pop_back();
+  return p;
+}
+
+// p times a positive rational so that its coefficients are coprime integers: same roots, same signs everywhere.
+Polynomial primitive(Polynomial p) {
+  if (is_zero(p)) return p;
+  mpz_class denominator_lcm = 1;
+  for (const mpq_class& c : p.c) mpz_lcm(denominator_lcm.get_mpz_t(), denominator_lcm.get_mpz_t(), c.get_den_mpz_t());
+  mpz_class numerator_gcd = 0;
+  for (const mpq_class& c : p.c) {
+    const mpz_class scaled = c.get_num() * (denominator_lcm / c.get_den());
+    mpz_gcd(numerator_gcd.get_mpz_t(), numerator_gcd.get_mpz_t(), scaled.get_mpz_t());
+  }
+  for (mpq_class& c : p.c) c = mpq_class(mpz_class(c.get_num() * (denominator_lcm / c.get_den())) / numerator_gcd);
   return p;
 }
 
@@ -53,11 +68,12 @@ int sign_variations(const std::vector<Polynomial>& sequence, const mpq_class& t)
 }
 
 std::vector<Polynomial> sturm_sequence(const Polynomial& p) {
-  std::vector<Polynomial> sequence{p, derivative(p)};
+  // Positive scalings keep every sign variation, so each member is kept in small integer form.
+  std::vector<Polynomial> sequence{primitive(p), primitive(derivative(p))};
   while (!is_zero(sequence.back())) {
     const Polynomial remainder = divide(sequence[sequence.size() - 2], sequence.back()).second;
     if (is_zero(remainder)) break;
-    sequence.push_back(constant(0) - remainder);
+    sequence.push_back(primitive(constant(0) - remainder));
   }
   return sequence;
 }
@@ -72,7 +88,7 @@ void isolate(const Polynomial& p, const mpq_class& lo, const mpq_class& hi, std:
   const mpq_class mid = (lo + hi) / 2;
   if (sign_at(p, mid) == 0) {
     // Deflate the rational root so that mid is no longer a root of the polynomial isolated on either side.
-    const Polynomial deflated = divide(p, linear(-mid, 1)).first;
+    const Polynomial deflated = primitive(divide(p, linear(-mid, 1)).first);
     isolate(deflated, lo, mid, out);
     out.push_back(AlgebraicPoint{true, mid, {}, mid, mid});
     isolate(deflated, mid, hi, out);
@@ -156,13 +172,27 @@ mpq_class evaluate(const Polynomial& p, const mpq_class& t) {
   return value;
 }
 
-int sign_at(const Polynomial& p, const mpq_class& t) { return sgn(evaluate(p, t)); }
+int sign_at(const Polynomial& p, const mpq_class& t) {
+  const bool integer_coefficients =
+      std::all_of(p.c.begin(), p.c.end(), [](const mpq_class& c) { return c.get_den() == 1; });
+  if (!integer_coefficients) return sgn(evaluate(p, t));
+  // With t = a / b (b > 0): sign p(t) = sign(sum c_i a^i b^(n - i)), all in integers (no gcd per operation).
+  const mpz_class& a = t.get_num();
+  const mpz_class& b = t.get_den();
+  mpz_class value = 0;
+  mpz_class b_power = 1;
+  for (std::size_t i = p.c.size(); i-- > 0;) {
+    value = value * a + p.c[i].get_num() * b_power;
+    b_power *= b;
+  }
+  return sgn(value);
+}
 
 Polynomial square_free(const Polynomial& p) {
   assert(!is_zero(p));
   const Polynomial g = gcd(p, derivative(p));
-  if (degree(g) <= 0) return p;
-  return divide(p, g).first;
+  if (degree(g) <= 0) return primitive(p);
+  return primitive(divide(p, g).first);
 }
 
 int count_roots(const Polynomial& p, const mpq_class& lo, const mpq_class& hi) {
@@ -180,8 +210,9 @@ Polynomial gcd(const Polynomial& p, const Polynomial& q) {
     b = std::move(r);
   }
   if (is_zero(a)) return a;
-  const mpq_class lead = a.c.back();
-  for (mpq_class& coefficient : a.c) coefficient /= lead;
+  a = primitive(std::move(a));
+  if (a.c.back() < 0)
+    for (mpq_class& coefficient : a.c) coefficient = -coefficient;
   return a;
 }
 
@@ -191,8 +222,8 @@ std::vector<AlgebraicPoint> roots_in_unit_interval(const Polynomial& p) {
   Polynomial f = square_free(p);
   const bool root_at_0 = sign_at(f, 0) == 0;
   const bool root_at_1 = sign_at(f, 1) == 0;
-  if (root_at_0) f = divide(f, linear(0, 1)).first;
-  if (root_at_1) f = divide(f, linear(-1, 1)).first;
+  if (root_at_0) f = primitive(divide(f, linear(0, 1)).first);
+  if (root_at_1) f = primitive(divide(f, linear(-1, 1)).first);
   if (root_at_0) roots.push_back(AlgebraicPoint{true, mpq_class(0), {}, mpq_class(0), mpq_class(0)});
   isolate(f, 0, 1, roots);
   if (root_at_1) roots.push_back(AlgebraicPoint{true, mpq_class(1), {}, mpq_class(1), mpq_class(1)});

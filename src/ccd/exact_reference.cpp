@@ -45,9 +45,16 @@ struct SignSystem {
 };
 
 SignSystem build_system(PairKind kind, const RationalPoints& points) {
+  // Scaling all coordinates by their positive common denominator changes no sign and makes every polynomial integer.
+  mpz_class common_denominator = 1;
+  for (const auto& point : points)
+    for (const mpq_class& c : point)
+      mpz_lcm(common_denominator.get_mpz_t(), common_denominator.get_mpz_t(), c.get_den_mpz_t());
+  const mpq_class scale(common_denominator);
   std::array<Vector, 4> x;
   for (int i = 0; i < 4; ++i)
-    for (int d = 0; d < 3; ++d) x[i][d] = linear(points[i][d], points[i + 4][d] - points[i][d]);
+    for (int d = 0; d < 3; ++d)
+      x[i][d] = linear(points[i][d] * scale, (points[i + 4][d] - points[i][d]) * scale);
   SignSystem system;
   system.polys.push_back(determinant(subtract(x[1], x[0]), subtract(x[2], x[0]), subtract(x[3], x[0])));
   std::vector<Vector> w;
