@@ -11,6 +11,8 @@ void add_info_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
 /// Adds `clothcd meshes [--dir DIR]`.
 void add_meshes_command(CLI::App& app);
+/// Adds `clothcd detect T0_MESH T1_MESH [--thickness H] [--bvh KIND] [--filter F] [--out FILE.json]`.
+void add_detect_command(CLI::App& app);
 /// Adds `clothcd ccd PATH [--type vf|ee] [--filter ...] [--thickness H] [--json] [--per-query FILE]`.
 void add_ccd_command(CLI::App& app);
 /// Adds `clothcd simplify IN OUT (--ratio R | --faces N) [--non-edge-threshold D] [--hausdorff]`.
