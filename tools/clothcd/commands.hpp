@@ -19,5 +19,7 @@ void add_ccd_command(CLI::App& app);
 void add_simplify_command(CLI::App& app);
 /// Adds `clothcd obb MESH [--method ...] [--simplify R] [--json]`.
 void add_obb_command(CLI::App& app);
+/// Adds `clothcd simulate --scene NAME --cloth A|B|C [--steps N] [--dt S] [--culling ...] [--bvh ...] --out DIR`.
+void add_simulate_command(CLI::App& app);
 
 }  // namespace clothcd::cli

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   clothcd::cli::add_ccd_command(app);
   clothcd::cli::add_simplify_command(app);
   clothcd::cli::add_obb_command(app);
+  clothcd::cli::add_simulate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
