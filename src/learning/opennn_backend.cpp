@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <opennn/opennn.h>
@@ -190,6 +191,53 @@ OpennnTraining OpennnTraining::run(const OpennnData& data, const OpennnTrainSett
   result.selection_error = loss->calculate_selection_error();
   result.epochs = outcome.epochs_number;
   return result;
+}
+
+namespace {
+
+// Every whitespace-separated token of the numeric elements must be a finite number.
+void check_numbers(const tinyxml2::XMLElement* element, const std::string& path) {
+  for (; element; element = element->NextSiblingElement()) {
+    const std::string name = element->Name();
+    if ((name == "Parameters" || name == "Minimum" || name == "Maximum" || name == "DecisionThreshold") &&
+        element->GetText()) {
+      std::istringstream tokens(element->GetText());
+      std::string token;
+      while (tokens >> token) {
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size() || !std::isfinite(value))
+          throw std::runtime_error(path + ": <" + name + "> holds '" + token + "', not a finite number");
+      }
+    }
+    check_numbers(element->FirstChildElement(), path);
+  }
+}
+
+}  // namespace
+
+NetworkWeights read_network_weights(const std::string& path) {
+  tinyxml2::XMLDocument document;
+  const tinyxml2::XMLError status = document.LoadFile(path.c_str());
+  if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED)
+    throw std::runtime_error(path + ": model file not found or unreadable");
+  if (status != tinyxml2::XML_SUCCESS)
+    throw std::runtime_error(path + ": not a well-formed XML model (truncated or corrupt): " +
+                             std::string(tinyxml2::XMLDocument::ErrorIDToName(status)));
+  const tinyxml2::XMLElement* root = document.FirstChildElement("NeuralNetwork");
+  if (!root) throw std::runtime_error(path + ": no <NeuralNetwork> element: not an OpenNN model");
+  for (const char* part : {"Inputs", "ScalingLayer", "MultilayerPerceptron", "ProbabilisticLayer"})
+    if (!root->FirstChildElement(part)) throw std::runtime_error(path + ": the model lacks <" + part + ">");
+  check_numbers(root, path);
+  const OpennnNetwork network = OpennnNetwork::load(path);
+  NetworkWeights weights;
+  try {
+    weights = network.export_weights();
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  validate_network_weights(weights, path);
+  return weights;
 }
 
 double opennn_area_under_curve(const std::vector<double>& labels, const std::vector<double>& scores) {

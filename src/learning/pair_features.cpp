@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -97,9 +98,16 @@ std::vector<std::string> pair_feature_names(const FeatureSettings& settings) {
 
 void compute_pair_features(const PairGeometry& pair, const FeatureSettings& settings, double* out) {
   double all[kMaxPairFeatures] = {};
+  double coordinate_sum = 0.0;
+  for (std::size_t k = 0; k < 4; ++k) coordinate_sum += pair.start[k].sum() + pair.end[k].sum();
+  if (!std::isfinite(coordinate_sum)) {
+    // Comparisons with NaN would turn into arbitrary margins: mark every feature invalid, the classifier keeps the pair.
+    std::fill(out, out + std::min(settings.count, kMaxPairFeatures), std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
   const double size = pair_size(pair);
   // A pair of zero size cannot be scaled; all-zero features say "no margin", so the network cannot be sure to drop it.
-  if (size > 0.0 || !std::isfinite(size)) {
+  if (size > 0.0) {
     const double length_scale = 1.0 / size, volume_scale = length_scale * length_scale * length_scale;
     const std::array<double, 4> bernstein = coplanarity_bernstein(pair);
     all[0] = same_sign_margin(bernstein.data(), 4) * volume_scale;

@@ -19,6 +19,10 @@ void add_ccd_command(CLI::App& app);
 void add_simplify_command(CLI::App& app);
 /// Adds `clothcd obb MESH [--method ...] [--simplify R] [--json]`.
 void add_obb_command(CLI::App& app);
+/// Adds `clothcd train DATASET --out DIR`.
+void add_train_command(CLI::App& app);
+/// Adds `clothcd evaluate MODEL DATASET`.
+void add_evaluate_command(CLI::App& app);
 /// Adds `clothcd simulate --scene NAME --cloth A|B|C [--steps N] [--dt S] [--culling ...] [--bvh ...] --out DIR`.
 void add_simulate_command(CLI::App& app);
 

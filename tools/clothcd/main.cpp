@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   clothcd::cli::add_simplify_command(app);
   clothcd::cli::add_obb_command(app);
   clothcd::cli::add_simulate_command(app);
+  clothcd::cli::add_train_command(app);
+  clothcd::cli::add_evaluate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,117 @@
+// Model card I/O: a small JSON file beside OpenNN's XML (features, dropped columns, data set, neurons, operating point,
+// metrics).
+#include "clothcd/learning/model_card.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "learning/json_lite.hpp"
+
+namespace clothcd::learning {
+namespace {
+
+std::string number_text(double value) {
+  if (!std::isfinite(value)) return "null";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+std::string string_list(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + json::quote(items[i]);
+  return out + "]";
+}
+
+const json::Value& member(const json::Value& root, const std::string& key, json::Value::Kind kind,
+                          const std::string& path) {
+  const json::Value* value = root.find(key);
+  if (!value) throw std::runtime_error(path + ": model card lacks '" + key + "'");
+  if (value->kind != kind) throw std::runtime_error(path + ": model card field '" + key + "' has the wrong type");
+  return *value;
+}
+
+double number(const json::Value& root, const std::string& key, const std::string& path) {
+  const double value = member(root, key, json::Value::Kind::Number, path).number;
+  if (!std::isfinite(value)) throw std::runtime_error(path + ": model card field '" + key + "' is not finite");
+  return value;
+}
+
+std::size_t count(const json::Value& root, const std::string& key, const std::string& path) {
+  const double value = number(root, key, path);
+  if (value < 0.0 || value != std::floor(value))
+    throw std::runtime_error(path + ": model card field '" + key + "' is not a count");
+  return static_cast<std::size_t>(value);
+}
+
+std::vector<std::string> strings(const json::Value& root, const std::string& key, const std::string& path) {
+  std::vector<std::string> out;
+  for (const json::Value& item : member(root, key, json::Value::Kind::Array, path).array) {
+    if (item.kind != json::Value::Kind::String)
+      throw std::runtime_error(path + ": model card field '" + key + "' must hold strings");
+    out.push_back(item.string);
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_model_card(const ModelCard& card, const std::string& path) {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error(path + ": cannot open for writing");
+  file << "{\n"
+       << "  \"format\": \"clothcd pair network\",\n"
+       << "  \"feature_version\": " << card.feature_version << ",\n"
+       << "  \"feature_count\": " << card.feature_count << ",\n"
+       << "  \"features\": " << string_list(card.features) << ",\n"
+       << "  \"inputs\": " << string_list(card.inputs) << ",\n"
+       << "  \"dropped_columns\": " << string_list(card.dropped_columns) << ",\n"
+       << "  \"dataset\": " << json::quote(card.dataset) << ",\n"
+       << "  \"rows\": {\"training\": " << card.rows_training << ", \"selection\": " << card.rows_selection
+       << ", \"testing\": " << card.rows_testing << "},\n"
+       << "  \"hidden_neurons\": " << card.hidden_neurons << ",\n"
+       << "  \"max_neurons\": " << card.max_neurons << ",\n"
+       << "  \"trials\": " << card.trials << ",\n"
+       << "  \"seed\": " << card.seed << ",\n"
+       << "  \"decision_threshold\": " << number_text(card.decision_threshold) << ",\n"
+       << "  \"drop_below\": " << number_text(card.drop_below) << ",\n"
+       << "  \"metrics\": {";
+  for (std::size_t i = 0; i < card.metrics.size(); ++i)
+    file << (i ? ",\n    " : "\n    ") << json::quote(card.metrics[i].first) << ": " << number_text(card.metrics[i].second);
+  file << "\n  }\n}\n";
+  if (!file.flush()) throw std::runtime_error(path + ": write failed");
+}
+
+ModelCard read_model_card(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error(path + ": cannot open the model card");
+  std::stringstream text;
+  text << file.rdbuf();
+  const json::Value root = json::parse(text.str(), path);
+  if (root.kind != json::Value::Kind::Object) throw std::runtime_error(path + ": model card is not a JSON object");
+  ModelCard card;
+  card.feature_version = static_cast<int>(count(root, "feature_version", path));
+  card.feature_count = count(root, "feature_count", path);
+  card.features = strings(root, "features", path);
+  card.inputs = strings(root, "inputs", path);
+  card.dropped_columns = strings(root, "dropped_columns", path);
+  card.dataset = member(root, "dataset", json::Value::Kind::String, path).string;
+  const json::Value& rows = member(root, "rows", json::Value::Kind::Object, path);
+  card.rows_training = count(rows, "training", path);
+  card.rows_selection = count(rows, "selection", path);
+  card.rows_testing = count(rows, "testing", path);
+  card.hidden_neurons = count(root, "hidden_neurons", path);
+  card.max_neurons = count(root, "max_neurons", path);
+  card.trials = count(root, "trials", path);
+  card.seed = static_cast<unsigned long long>(number(root, "seed", path));
+  card.decision_threshold = number(root, "decision_threshold", path);
+  card.drop_below = number(root, "drop_below", path);
+  for (const auto& [name, value] : member(root, "metrics", json::Value::Kind::Object, path).object)
+    if (value.kind == json::Value::Kind::Number) card.metrics.emplace_back(name, value.number);
+  return card;
+}
+
+}  // namespace clothcd::learning

@@ -1,0 +1,149 @@
+// Runtime pair network: agreement with OpenNN's outputs and with the plain reference forward pass, decisions at the
+// operating point, safety on the selection split, and every kind of bad model file.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "clothcd/learning/pair_classifier.hpp"
+#include "learning/opennn_backend.hpp"
+#include "learning/trained_model_fixture.hpp"
+
+using namespace clothcd::learning;
+namespace fs = std::filesystem;
+
+namespace {
+
+PairFeatureBatch batch_of(const PairDataset& dataset, std::size_t first, std::size_t count) {
+  PairFeatureBatch batch;
+  batch.resize(count, dataset.feature_count());
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t f = 0; f < dataset.feature_count(); ++f) batch.column(f)[i] = dataset.row(first + i)[f];
+  return batch;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// A copy of the shared model directory whose network.xml (or card.json) is replaced by `edit(original)`.
+std::string edited_model(const std::string& name, const std::string& file, std::string (*edit)(const std::string&)) {
+  const std::string source = test::trained_model().directory;
+  const std::string dir = (fs::temp_directory_path() / ("clothcd_bad_model_" + name)).string();
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* part : {"network.xml", "card.json"}) fs::copy_file(source + "/" + part, dir + "/" + part);
+  const std::string text = read_text(dir + "/" + file);
+  std::ofstream(dir + "/" + file, std::ios::trunc) << edit(text);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("the batched forward pass matches OpenNN's calculate_outputs to 1e-12", "[learning][runtime][opennn]") {
+  const test::TrainedModel& model = test::trained_model();
+  const PairClassifier classifier = PairClassifier::load(model.directory);
+  const std::size_t rows = 257;  // not a multiple of the block size
+  const PairFeatureBatch batch = batch_of(model.dataset, 0, rows);
+  std::vector<double> ours(rows);
+  classifier.probabilities(batch, ours.data());
+
+  const NetworkWeights& weights = classifier.weights();
+  std::vector<double> inputs;
+  for (std::size_t i = 0; i < rows; ++i)
+    for (const std::string& name : weights.input_names) {
+      const auto column = std::find(model.dataset.feature_names.begin(), model.dataset.feature_names.end(), name) -
+                          model.dataset.feature_names.begin();
+      inputs.push_back(model.dataset.row(i)[column]);
+    }
+  const std::vector<double> opennn =
+      backend::OpennnNetwork::load(model.directory + "/network.xml").outputs(inputs, true);
+  REQUIRE(opennn.size() == rows);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    worst = std::max(worst, std::abs(ours[i] - opennn[i]));
+    CHECK(ours[i] == Approx(reference_probability(weights, &inputs[i * weights.input_count()])).margin(1e-15));
+  }
+  CHECK(worst <= 1e-12);
+}
+
+TEST_CASE("decisions follow the operating point and non-finite features are kept", "[learning][runtime]") {
+  const test::TrainedModel& model = test::trained_model();
+  PairClassifier classifier = PairClassifier::load(model.directory);
+  const OperatingPoint point = classifier.operating_point();
+  CHECK(point.drop_below >= 0.0);
+  CHECK(point.drop_below <= point.decision_threshold);
+
+  PairFeatureBatch batch = batch_of(model.dataset, 0, 100);
+  batch.column(0)[7] = std::nan("");
+  std::vector<double> probability(100);
+  std::vector<PairDecision> decision(100);
+  classifier.probabilities(batch, probability.data());
+  classifier.decide(batch, decision.data());
+  for (std::size_t i = 0; i < 100; ++i) CHECK(decision[i] == classifier.decide(probability[i]));
+  CHECK(decision[7] == PairDecision::Keep);
+  CHECK(classifier.decide(point.decision_threshold) == PairDecision::Keep);
+  CHECK(classifier.decide(-1.0) == (point.drop_below > -1.0 ? PairDecision::Drop : PairDecision::Check));
+
+  classifier.set_operating_point(OperatingPoint{0.0, 0.5});
+  CHECK(classifier.decide(0.0) == PairDecision::Check);
+  CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.6, 0.5}), std::invalid_argument);
+}
+
+TEST_CASE("the operating point drops no real collision of the selection split", "[learning][runtime]") {
+  const test::TrainedModel& model = test::trained_model();
+  const PairClassifier classifier = PairClassifier::load(model.directory);
+  const PairFeatureBatch batch = batch_of(model.dataset, 0, model.dataset.row_count());
+  std::vector<PairDecision> decision(batch.rows);
+  classifier.decide(batch, decision.data());
+  std::size_t real = 0, dropped = 0;
+  for (std::size_t i = 0; i < batch.rows; ++i) {
+    if (model.dataset.split[i] != Split::Selection || model.dataset.exact_label[i] != 1) continue;
+    ++real;
+    CHECK(decision[i] != PairDecision::Drop);
+    dropped += decision[i] == PairDecision::Drop;
+  }
+  CHECK(real > 20);
+  CHECK(std::count(decision.begin(), decision.end(), PairDecision::Drop) > 0);  // the safe point still culls
+}
+
+TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
+  const std::string dir = test::trained_model().directory;
+  CHECK_THROWS_WITH(PairClassifier::load("/nonexistent/model"), Catch::Contains("/nonexistent/model"));
+
+  const std::string truncated = edited_model("truncated", "network.xml", [](const std::string& text) {
+    return text.substr(0, text.size() / 2);
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(truncated), Catch::Contains("network.xml") && Catch::Contains("truncated"));
+
+  const std::string nan_weights = edited_model("nan", "network.xml", [](const std::string& text) {
+    const std::size_t at = text.find("<Parameters>") + std::string("<Parameters>").size();
+    return text.substr(0, at) + "nan " + text.substr(text.find(' ', at) + 1);
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(nan_weights), Catch::Contains("Parameters") && Catch::Contains("nan"));
+
+  const std::string wrong_inputs = edited_model("inputs", "card.json", [](const std::string& text) {
+    return std::regex_replace(text, std::regex("\"inputs\": \\[\"[a-z_0-9]+\", "), "\"inputs\": [");
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(wrong_inputs), Catch::Contains("inputs"));
+
+  CHECK_THROWS_WITH(PairClassifier::load(dir, FeatureSettings{12}), Catch::Contains("features"));
+
+  const std::string old_version = edited_model("version", "card.json", [](const std::string& text) {
+    return std::regex_replace(text, std::regex("\"feature_version\": [0-9]+"), "\"feature_version\": 999");
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(old_version), Catch::Contains("version"));
+
+  const std::string broken_card = edited_model("card", "card.json", [](const std::string& text) {
+    return text.substr(0, 40);
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(broken_card), Catch::Contains("card.json") && Catch::Contains("malformed"));
+}

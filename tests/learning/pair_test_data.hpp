@@ -1,0 +1,127 @@
+#pragma once
+// Seeded random CCD pairs labelled by a plainly written reference of the paper's two filters, for the learning tests
+// (until the dataset generator feeds simulation pairs). Small and fast.
+
+#include <array>
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "clothcd/learning/pair_dataset.hpp"
+#include "clothcd/learning/pair_features.hpp"
+
+namespace clothcd::learning::test {
+
+/// Random pair in a random frame: points near each other, moving a comparable distance; random scale and offset.
+inline PairGeometry random_pair(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), log_scale(-2.0, 2.0);
+  PairGeometry pair;
+  pair.type = rng() % 2 ? PairType::EdgeEdge : PairType::VertexFace;
+  const double scale = std::pow(10.0, log_scale(rng));
+  const Eigen::Vector3d offset(unit(rng) * 100.0, unit(rng) * 100.0, unit(rng) * 100.0);
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d p(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d d(unit(rng), unit(rng), unit(rng));
+    pair.start[static_cast<std::size_t>(k)] = offset + scale * p;
+    pair.end[static_cast<std::size_t>(k)] = offset + scale * (p + 1.5 * d);
+  }
+  return pair;
+}
+
+/// D(t) = (x1 - x0) x (x2 - x0) . (x3 - x0) at time t.
+inline double coplanarity(const PairGeometry& pair, double t) {
+  auto x = [&](int k) {
+    return Eigen::Vector3d((1.0 - t) * pair.start[static_cast<std::size_t>(k)] + t * pair.end[static_cast<std::size_t>(k)]);
+  };
+  return (x(1) - x(0)).cross(x(2) - x(0)).dot(x(3) - x(0));
+}
+
+/// D'(t) by the product rule.
+inline double coplanarity_derivative(const PairGeometry& pair, double t) {
+  auto x = [&](int k) {
+    return Eigen::Vector3d((1.0 - t) * pair.start[static_cast<std::size_t>(k)] + t * pair.end[static_cast<std::size_t>(k)]);
+  };
+  auto v = [&](int k) { return Eigen::Vector3d(pair.end[static_cast<std::size_t>(k)] - pair.start[static_cast<std::size_t>(k)]); };
+  const Eigen::Vector3d p1 = x(1) - x(0), p2 = x(2) - x(0), p3 = x(3) - x(0);
+  const Eigen::Vector3d v1 = v(1) - v(0), v2 = v(2) - v(0), v3 = v(3) - v(0);
+  return v1.cross(p2).dot(p3) + p1.cross(v2).dot(p3) + p1.cross(p2).dot(v3);
+}
+
+/// True when the algebraic filter removes the pair: the Bernstein coefficients D(0), D(0) + D'(0)/3, D(1) - D'(1)/3,
+/// D(1) all have one strict sign.
+inline bool algebraic_filter_removes(const PairGeometry& pair) {
+  const double b[4] = {coplanarity(pair, 0.0), coplanarity(pair, 0.0) + coplanarity_derivative(pair, 0.0) / 3.0,
+                       coplanarity(pair, 1.0) - coplanarity_derivative(pair, 1.0) / 3.0, coplanarity(pair, 1.0)};
+  bool positive = true, negative = true;
+  for (const double c : b) positive &= c > 0.0, negative &= c < 0.0;
+  return positive || negative;
+}
+
+/// True when the projection filter (eqs. 8-10) removes the pair along one of the paper's five directions.
+inline bool projection_filter_removes(const PairGeometry& pair) {
+  const double r2 = std::sqrt(2.0) / 2.0, r3 = std::sqrt(3.0) / 3.0;
+  const Eigen::Vector3d directions[5] = {{1, 0, 0}, {r2, r2, 0}, {r2, 0, r2}, {0, r2, r2}, {r3, r3, r3}};
+  for (const Eigen::Vector3d& s : directions) {
+    bool positive = true, negative = true;
+    for (const auto* x : {&pair.start, &pair.end}) {
+      const auto& p = *x;
+      if (pair.type == PairType::VertexFace) {
+        for (int k = 1; k < 4; ++k) {
+          const double z = (p[0] - p[static_cast<std::size_t>(k)]).dot(s);
+          positive &= z > 0.0, negative &= z < 0.0;
+        }
+      } else {
+        for (int a = 0; a < 2; ++a)
+          for (int b = 2; b < 4; ++b) {
+            const double z = (p[static_cast<std::size_t>(a)] - p[static_cast<std::size_t>(b)]).dot(s);
+            positive &= z > 0.0, negative &= z < 0.0;
+          }
+      }
+    }
+    if (positive || negative) return true;
+  }
+  return false;
+}
+
+/// The paper's label: 0 when the combined filters remove the pair.
+inline int filter_label(const PairGeometry& pair) {
+  return algebraic_filter_removes(pair) || projection_filter_removes(pair) ? 0 : 1;
+}
+
+/// Test stand-in for the exact label: kept by the filters and coplanar at some sampled time (D changes sign). Only the
+/// label logic is under test here, not CCD.
+inline int exact_label(const PairGeometry& pair) {
+  if (filter_label(pair) == 0) return 0;
+  double previous = coplanarity(pair, 0.0);
+  for (int k = 1; k <= 64; ++k) {
+    const double current = coplanarity(pair, k / 64.0);
+    if (previous == 0.0 || (previous < 0.0) != (current < 0.0)) return 1;
+    previous = current;
+  }
+  return 0;
+}
+
+/// `rows` labelled random pairs with `feature_count` features, split 60/20/20 from `seed`.
+inline PairDataset make_pair_dataset(std::size_t rows, unsigned long long seed, std::size_t feature_count = 15) {
+  std::mt19937_64 rng(seed);
+  const FeatureSettings settings{feature_count};
+  PairDataset dataset;
+  dataset.feature_names = pair_feature_names(settings);
+  std::vector<double> features(feature_count);
+  for (std::size_t i = 0; i < rows; ++i) {
+    const PairGeometry pair = random_pair(rng);
+    compute_pair_features(pair, settings, features.data());
+    PairRow row;
+    row.features = features.data();
+    row.filter_label = filter_label(pair);
+    row.exact_label = exact_label(pair);
+    row.type = pair.type;
+    row.scene = "random";
+    dataset.add_row(row);
+  }
+  assign_splits(dataset, SplitSettings{0.6, 0.2, seed});
+  return dataset;
+}
+
+}  // namespace clothcd::learning::test

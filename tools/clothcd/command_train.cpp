@@ -1,0 +1,78 @@
+// `clothcd train DATASET.csv --out models/NAME`: the paper's network trained by OpenNN with incremental neuron
+// selection; writes network.xml, card.json, neurons.csv and neurons.png into the output directory.
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "clothcd/learning/network_training.hpp"
+#include "clothcd/learning/pair_dataset.hpp"
+#include "commands.hpp"
+
+namespace clothcd::cli {
+namespace {
+
+struct TrainOptions {
+  std::string dataset;
+  std::string out;
+  double rebalance = 0.0;
+  learning::TrainingSettings settings;
+};
+
+void print_progress(std::size_t done, std::size_t total, std::size_t neurons) {
+  constexpr int kWidth = 30;
+  const int filled = total == 0 ? kWidth : static_cast<int>(kWidth * done / total);
+  std::fprintf(stderr, "\rtraining [%s%s] %zu/%zu  (hidden neurons %zu)", std::string(filled, '#').c_str(),
+               std::string(kWidth - filled, '.').c_str(), done, total, neurons);
+  if (done == total) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+void run_train(const TrainOptions& options) {
+  learning::PairDataset dataset = learning::read_pair_dataset_csv(options.dataset);
+  if (options.rebalance > 0.0)
+    dataset = learning::rebalance_training_rows(dataset, options.rebalance, options.settings.seed);
+  learning::TrainingSettings settings = options.settings;
+  settings.feature_count = dataset.feature_count();
+  const learning::ClassBalance balance = learning::class_balance(dataset);
+  std::cout << "data set: " << options.dataset << "\n";
+  for (int s = 0; s < 3; ++s)
+    std::cout << "  " << std::setw(9) << learning::split_name(static_cast<learning::Split>(s)) << ": "
+              << balance.rows[s] << " rows, filter label 1: " << balance.filter_positive[s]
+              << ", exact label 1: " << balance.exact_positive[s] << '\n';
+  const learning::TrainingReport report =
+      learning::train_pair_network(dataset, settings, options.out, options.dataset, print_progress);
+  std::cout << "neurons  training_error  selection_error\n";
+  for (const learning::NeuronCountResult& r : report.curve)
+    std::cout << std::setw(7) << r.neurons << "  " << std::setw(14) << r.training_error << "  " << std::setw(15)
+              << r.selection_error << '\n';
+  const learning::ModelCard& card = report.card;
+  std::cout << "chosen hidden neurons: " << card.hidden_neurons << "\n"
+            << "dropped constant columns: " << card.dropped_columns.size() << "\n"
+            << "selection accuracy: " << report.selection_confusion.accuracy() << "\n"
+            << "testing accuracy: " << report.testing_confusion.accuracy() << "  AUC: " << report.testing_auc << "\n"
+            << "operating point: drop below " << card.drop_below << ", check below " << card.decision_threshold << "\n"
+            << "wrote " << options.out << "/{network.xml,card.json,neurons.csv,neurons.png}\n";
+}
+
+}  // namespace
+
+void add_train_command(CLI::App& app) {
+  auto* command = app.add_subcommand("train", "Train the pair network (OpenNN, quasi-Newton, incremental neuron selection)");
+  auto options = std::make_shared<TrainOptions>();
+  command->add_option("DATASET", options->dataset, "Pair data set CSV (datasets/README.md)")->required();
+  command->add_option("--out", options->out, "Output model directory, e.g. models/NAME")->required();
+  command->add_option("--max-neurons", options->settings.max_neurons, "Search 1..N hidden neurons")->capture_default_str();
+  command->add_option("--trials", options->settings.trials, "Trainings per neuron count")->capture_default_str();
+  command->add_option("--seed", options->settings.seed, "Seed (same seed, same model)")->capture_default_str();
+  command->add_option("--max-epochs", options->settings.max_epochs, "Quasi-Newton iterations per training")
+      ->capture_default_str();
+  command->add_option("--threshold", options->settings.decision_threshold, "Decision threshold of the binary layer")
+      ->capture_default_str();
+  command->add_option("--rebalance", options->rebalance,
+                      "Keep at most RATIO x the minority class of the training rows (0: off)")->capture_default_str();
+  command->callback([options] { run_train(*options); });
+}
+
+}  // namespace clothcd::cli
