@@ -54,7 +54,7 @@ int projected_gaps(const PairGeometry& pair, const Eigen::Vector3d& s, double* g
   int n = 0;
   for (const auto* positions : {&pair.start, &pair.end}) {
     const auto& x = *positions;
-    if (pair.type == PairType::VertexFace) {
+    if (pair.kind == PairType::VertexFace) {
       for (int k = 1; k < 4; ++k) gaps[n++] = (x[0] - x[k]).dot(s);
     } else {
       for (int a = 0; a < 2; ++a)
@@ -125,12 +125,12 @@ void compute_pair_features(const PairGeometry& pair, const FeatureSettings& sett
     double motion_squared = 0.0;
     for (int k = 0; k < 4; ++k) motion_squared += (pair.end[k] - pair.start[k] - mean_motion).squaredNorm();
     all[11] = std::sqrt(0.25 * motion_squared) * length_scale;
-    all[12] = centre_gap(pair.type, pair.start) * length_scale;
-    all[13] = centre_gap(pair.type, pair.end) * length_scale;
-    all[15] = primitive_area(pair.type, pair.start) * length_scale * length_scale;
-    all[16] = primitive_area(pair.type, pair.end) * length_scale * length_scale;
+    all[12] = centre_gap(pair.kind, pair.start) * length_scale;
+    all[13] = centre_gap(pair.kind, pair.end) * length_scale;
+    all[15] = primitive_area(pair.kind, pair.start) * length_scale * length_scale;
+    all[16] = primitive_area(pair.kind, pair.end) * length_scale * length_scale;
   }
-  all[14] = pair.type == PairType::EdgeEdge ? 1.0 : 0.0;
+  all[14] = pair.kind == PairType::EdgeEdge ? 1.0 : 0.0;
   std::copy(all, all + std::min(settings.count, kMaxPairFeatures), out);
 }
 

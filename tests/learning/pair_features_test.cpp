@@ -59,7 +59,7 @@ TEST_CASE("the margin features are positive exactly when the reference filters r
     double best = -1.0;
     for (int d = 2; d < 7; ++d) best = std::max(best, f[static_cast<std::size_t>(d)]);
     CHECK(projection == best);
-    CHECK(f[14] == (pair.type == PairType::EdgeEdge ? 1.0 : 0.0));
+    CHECK(f[14] == (pair.kind == PairType::EdgeEdge ? 1.0 : 0.0));
     (test::filter_label(pair) == 0 ? removed : kept)++;
   }
   CHECK(removed > 200);  // both classes occur, so the agreement above means something
@@ -68,7 +68,7 @@ TEST_CASE("the margin features are positive exactly when the reference filters r
 
 TEST_CASE("a vertex moving straight through a face has no filter margin", "[learning][features]") {
   PairGeometry pair;
-  pair.type = PairType::VertexFace;
+  pair.kind = PairType::VertexFace;
   pair.start = {Eigen::Vector3d(0.2, 0.2, 1.0), Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)};
   pair.end = pair.start;
   pair.end[0] = Eigen::Vector3d(0.2, 0.2, -1.0);  // crosses the triangle at t = 0.5: a real collision

@@ -1,6 +1,7 @@
 #pragma once
-// Seeded random CCD pairs labelled by a plainly written reference of the paper's two filters, for the learning tests
-// (until the dataset generator feeds simulation pairs). Small and fast.
+// Seeded random CCD pairs for the learning tests (until the dataset generator feeds simulation pairs), labelled by the
+// CCD stage's filters and exact CCD, plus a plainly written reference of the paper's two filters that the feature
+// margins are checked against. Small and fast.
 
 #include <array>
 #include <cmath>
@@ -17,7 +18,7 @@ namespace clothcd::learning::test {
 inline PairGeometry random_pair(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0), log_scale(-2.0, 2.0);
   PairGeometry pair;
-  pair.type = rng() % 2 ? PairType::EdgeEdge : PairType::VertexFace;
+  pair.kind = rng() % 2 ? PairType::EdgeEdge : PairType::VertexFace;
   const double scale = std::pow(10.0, log_scale(rng));
   const Eigen::Vector3d offset(unit(rng) * 100.0, unit(rng) * 100.0, unit(rng) * 100.0);
   for (int k = 0; k < 4; ++k) {
@@ -66,7 +67,7 @@ inline bool projection_filter_removes(const PairGeometry& pair) {
     bool positive = true, negative = true;
     for (const auto* x : {&pair.start, &pair.end}) {
       const auto& p = *x;
-      if (pair.type == PairType::VertexFace) {
+      if (pair.kind == PairType::VertexFace) {
         for (int k = 1; k < 4; ++k) {
           const double z = (p[0] - p[static_cast<std::size_t>(k)]).dot(s);
           positive &= z > 0.0, negative &= z < 0.0;
@@ -84,23 +85,11 @@ inline bool projection_filter_removes(const PairGeometry& pair) {
   return false;
 }
 
-/// The paper's label: 0 when the combined filters remove the pair.
-inline int filter_label(const PairGeometry& pair) {
-  return algebraic_filter_removes(pair) || projection_filter_removes(pair) ? 0 : 1;
-}
+/// The paper's label, from the CCD stage's own filters: 0 when the combined filters remove the pair.
+inline int filter_label(const PairGeometry& pair) { return ccd::combined_filters_cull(pair) ? 0 : 1; }
 
-/// Test stand-in for the exact label: kept by the filters and coplanar at some sampled time (D changes sign). Only the
-/// label logic is under test here, not CCD.
-inline int exact_label(const PairGeometry& pair) {
-  if (filter_label(pair) == 0) return 0;
-  double previous = coplanarity(pair, 0.0);
-  for (int k = 1; k <= 64; ++k) {
-    const double current = coplanarity(pair, k / 64.0);
-    if (previous == 0.0 || (previous < 0.0) != (current < 0.0)) return 1;
-    previous = current;
-  }
-  return 0;
-}
+/// The exact label from the CCD stage's safe narrow phase: 1 when the pair collides during the step.
+inline int exact_label(const PairGeometry& pair) { return ccd::continuous_collision(pair).hit ? 1 : 0; }
 
 /// `rows` labelled random pairs with `feature_count` features, split 60/20/20 from `seed`.
 inline PairDataset make_pair_dataset(std::size_t rows, unsigned long long seed, std::size_t feature_count = 15) {
@@ -116,7 +105,7 @@ inline PairDataset make_pair_dataset(std::size_t rows, unsigned long long seed, 
     row.features = features.data();
     row.filter_label = filter_label(pair);
     row.exact_label = exact_label(pair);
-    row.type = pair.type;
+    row.type = pair.kind;
     row.scene = "random";
     dataset.add_row(row);
   }

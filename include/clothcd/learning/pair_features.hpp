@@ -14,20 +14,18 @@
 
 #include <Eigen/Core>
 
+#include "clothcd/ccd/ccd.hpp"
+
 namespace clothcd::learning {
 
-/// Vertex-face (point 0 against triangle 1, 2, 3) or edge-edge (edge 0-1 against edge 2-3).
-enum class PairType : unsigned char { VertexFace, EdgeEdge };
+/// Vertex-face (point 0 against triangle 1, 2, 3) or edge-edge (edge 0-1 against edge 2-3): the CCD stage's PairKind.
+using PairType = PairKind;
 
 /// "VF" or "EE".
 [[nodiscard]] const char* pair_type_name(PairType type);
 
-/// The eight positions of a candidate pair over one time step (linear motion from start to end).
-struct PairGeometry {
-  PairType type = PairType::VertexFace;  ///< Which primitives.
-  std::array<Eigen::Vector3d, 4> start;  ///< Positions at t = 0 (point order as in PairType).
-  std::array<Eigen::Vector3d, 4> end;    ///< Positions at t = 1.
-};
+/// The eight positions of a candidate pair over one time step (linear motion from start to end): the CCD query itself.
+using PairGeometry = ccd::CcdQuery;
 
 /// Number of features defined; FeatureSettings::count picks the first `count` of them.
 inline constexpr std::size_t kMaxPairFeatures = 17;
