@@ -135,7 +135,8 @@ IntersectionReport check_frame(const Faces& cloth_faces, const Vertices& cloth_p
   for (size_t begin = 0; begin < cells.size();) {
     size_t end = begin + 1;
     while (end < cells.size() && cells[end].key == cells[begin].key) ++end;
-    for (size_t i = begin; i < end; ++i) {
+    // Entries of a cell are sorted by index and the cloth's come first: obstacle-obstacle pairs are never visited.
+    for (size_t i = begin; i < end && entries[cells[i].entry].body == 0; ++i) {
       const int p = cells[i].entry;
       for (size_t j = i + 1; j < end; ++j) {
         const int q = cells[j].entry;
