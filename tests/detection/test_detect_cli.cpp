@@ -1,0 +1,67 @@
+// `clothcd detect`: two frames of one mesh in, collisions and stage counts out; mismatched frames are a clear error.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "clothcd/mesh/mesh_generators.hpp"
+#include "clothcd/mesh/mesh_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int run(const std::string& arguments, const fs::path& log) {
+  const std::string command = std::string(CLOTHCD_CLI_PATH) + " " + arguments + " > " + log.string() + " 2>&1";
+  return std::system(command.c_str());
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("clothcd detect reports a cloth falling through a plate", "[detection][cli]") {
+  const fs::path dir = fs::temp_directory_path() / "clothcd_detect_cli_test";
+  fs::create_directories(dir);
+  // One mesh holding a still plate (y = 0) and a small cloth above it that falls through it during the step.
+  clothcd::TriangleMesh plate = clothcd::make_grid(3, 3, 2.0, 2.0);
+  clothcd::TriangleMesh cloth = clothcd::make_grid(4, 4, 0.5, 0.5);
+  clothcd::TriangleMesh t0;
+  t0.vertices.resize(plate.vertex_count() + cloth.vertex_count(), 3);
+  t0.vertices << plate.vertices, cloth.vertices;
+  t0.vertices.bottomRows(cloth.vertex_count()).col(1).array() += 0.1;
+  t0.faces.resize(plate.face_count() + cloth.face_count(), 3);
+  t0.faces << plate.faces, (cloth.faces.array() + static_cast<int>(plate.vertex_count())).matrix();
+  clothcd::TriangleMesh t1 = t0;
+  t1.vertices.bottomRows(cloth.vertex_count()).col(1).array() -= 0.2;
+  clothcd::save_mesh(t0, dir / "t0.obj");
+  clothcd::save_mesh(t1, dir / "t1.obj");
+
+  const fs::path json = dir / "out.json";
+  REQUIRE(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t1.obj").string() + " --bvh aabb --out " +
+                  json.string(),
+              dir / "log.txt") == 0);
+  const std::string out = read(json);
+  // Each of the 16 cloth vertices crosses the plate: at least 16 vertex-face collisions at toi 0.5.
+  CHECK(out.find("\"vertex_face\": [") != std::string::npos);
+  CHECK(out.find("\"toi\": 0.5") != std::string::npos);
+  CHECK(out.find("\"vertex_face\": 0") == std::string::npos);
+
+  // A frame with one face fewer does not describe the same mesh.
+  clothcd::TriangleMesh other = t1;
+  other.faces.conservativeResize(other.faces.rows() - 1, 3);
+  clothcd::save_mesh(other, dir / "bad.obj");
+  CHECK(run("detect " + (dir / "t0.obj").string() + " " + (dir / "bad.obj").string(), dir / "log.txt") != 0);
+  CHECK(read(dir / "log.txt").find("clothcd: error:") != std::string::npos);
+  CHECK(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t1.obj").string() + " --bvh octree",
+            dir / "log.txt") != 0);
+  fs::remove_all(dir);
+}
