@@ -89,7 +89,7 @@ void write_line_chart_png(const std::string& path, const std::vector<ChartSeries
   double x_min = settings.x_min, x_max = settings.x_max, y_min = settings.y_min, y_max = settings.y_max;
   data_range(series, true, x_min, x_max);
   data_range(series, false, y_min, y_max);
-  const int left = 70, right = settings.width - 20, top = 20, bottom = settings.height - 40;
+  const int left = 90, right = settings.width - 20, top = 20, bottom = settings.height - 40;
   auto px = [&](double x) { return left + static_cast<int>(std::lround((x - x_min) / (x_max - x_min) * (right - left))); };
   auto py = [&](double y) { return bottom - static_cast<int>(std::lround((y - y_min) / (y_max - y_min) * (bottom - top))); };
   constexpr int kTicks = 5;

@@ -19,9 +19,9 @@ namespace clothcd::learning {
 namespace {
 
 const char* const kFeatureNames[kMaxPairFeatures] = {
-    "algebraic_margin", "projection_margin",  "projection_s1", "projection_s2", "projection_s3", "projection_s4",
-    "projection_s5",    "bernstein_b0",       "bernstein_b1",  "bernstein_b2",  "bernstein_b3",  "relative_motion",
-    "gap_start",        "gap_end",            "is_edge_edge",  "area_start",    "area_end"};
+    "filter_margin", "algebraic_margin", "projection_margin", "projection_s1", "projection_s2", "projection_s3",
+    "projection_s4", "projection_s5",    "bernstein_b0",      "bernstein_b1",  "bernstein_b2",  "bernstein_b3",
+    "relative_motion", "gap_start",      "is_edge_edge",      "gap_end",       "area_start",    "area_end"};
 
 // The paper's projection directions (eq. 10).
 const Eigen::Vector3d kDirections[5] = {
@@ -110,25 +110,29 @@ void compute_pair_features(const PairGeometry& pair, const FeatureSettings& sett
   if (size > 0.0) {
     const double length_scale = 1.0 / size, volume_scale = length_scale * length_scale * length_scale;
     const std::array<double, 4> bernstein = coplanarity_bernstein(pair);
-    all[0] = same_sign_margin(bernstein.data(), 4) * volume_scale;
+    // Cube roots of the volumes and signed square roots of the lengths keep the sign (the filters' decision at 0)
+    // but spread the values near 0, where the decision is, over the min-max scaled range.
+    all[1] = std::cbrt(same_sign_margin(bernstein.data(), 4) * volume_scale);
     double best_projection = -1.0;
     for (int d = 0; d < 5; ++d) {
       double gaps[8];
       const int n = projected_gaps(pair, kDirections[d], gaps);
-      all[2 + d] = same_sign_margin(gaps, n) * length_scale;
-      best_projection = std::max(best_projection, all[2 + d]);
+      const double margin = same_sign_margin(gaps, n) * length_scale;
+      all[3 + d] = std::copysign(std::sqrt(std::abs(margin)), margin);
+      best_projection = std::max(best_projection, all[3 + d]);
     }
-    all[1] = best_projection;
-    for (int k = 0; k < 4; ++k) all[7 + k] = bernstein[static_cast<std::size_t>(k)] * volume_scale;
+    all[2] = best_projection;
+    all[0] = std::max(all[1], all[2]);
+    for (int k = 0; k < 4; ++k) all[8 + k] = std::cbrt(bernstein[static_cast<std::size_t>(k)] * volume_scale);
     Eigen::Vector3d mean_motion = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) mean_motion += 0.25 * (pair.end[k] - pair.start[k]);
     double motion_squared = 0.0;
     for (int k = 0; k < 4; ++k) motion_squared += (pair.end[k] - pair.start[k] - mean_motion).squaredNorm();
-    all[11] = std::sqrt(0.25 * motion_squared) * length_scale;
-    all[12] = centre_gap(pair.kind, pair.start) * length_scale;
-    all[13] = centre_gap(pair.kind, pair.end) * length_scale;
-    all[15] = primitive_area(pair.kind, pair.start) * length_scale * length_scale;
-    all[16] = primitive_area(pair.kind, pair.end) * length_scale * length_scale;
+    all[12] = std::sqrt(0.25 * motion_squared) * length_scale;
+    all[13] = centre_gap(pair.kind, pair.start) * length_scale;
+    all[15] = centre_gap(pair.kind, pair.end) * length_scale;
+    all[16] = primitive_area(pair.kind, pair.start) * length_scale * length_scale;
+    all[17] = primitive_area(pair.kind, pair.end) * length_scale * length_scale;
   }
   all[14] = pair.kind == PairType::EdgeEdge ? 1.0 : 0.0;
   std::copy(all, all + std::min(settings.count, kMaxPairFeatures), out);

@@ -11,23 +11,14 @@
 
 #include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/learning/pair_features.hpp"
+#include "clothcd/learning/random_pairs.hpp"
 
 namespace clothcd::learning::test {
 
-/// Random pair in a random frame: points near each other, moving a comparable distance; random scale and offset.
+/// Random pair in a random frame (the library's generator, seeded from `rng`).
 inline PairGeometry random_pair(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0), log_scale(-2.0, 2.0);
-  PairGeometry pair;
-  pair.kind = rng() % 2 ? PairType::EdgeEdge : PairType::VertexFace;
-  const double scale = std::pow(10.0, log_scale(rng));
-  const Eigen::Vector3d offset(unit(rng) * 100.0, unit(rng) * 100.0, unit(rng) * 100.0);
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector3d p(unit(rng), unit(rng), unit(rng));
-    const Eigen::Vector3d d(unit(rng), unit(rng), unit(rng));
-    pair.start[static_cast<std::size_t>(k)] = offset + scale * p;
-    pair.end[static_cast<std::size_t>(k)] = offset + scale * (p + 1.5 * d);
-  }
-  return pair;
+  unsigned long long state = rng();
+  return clothcd::learning::random_pair(state, 1.5);
 }
 
 /// D(t) = (x1 - x0) x (x2 - x0) . (x3 - x0) at time t.
@@ -93,24 +84,11 @@ inline int exact_label(const PairGeometry& pair) { return ccd::continuous_collis
 
 /// `rows` labelled random pairs with `feature_count` features, split 60/20/20 from `seed`.
 inline PairDataset make_pair_dataset(std::size_t rows, unsigned long long seed, std::size_t feature_count = 15) {
-  std::mt19937_64 rng(seed);
-  const FeatureSettings settings{feature_count};
-  PairDataset dataset;
-  dataset.feature_names = pair_feature_names(settings);
-  std::vector<double> features(feature_count);
-  for (std::size_t i = 0; i < rows; ++i) {
-    const PairGeometry pair = random_pair(rng);
-    compute_pair_features(pair, settings, features.data());
-    PairRow row;
-    row.features = features.data();
-    row.filter_label = filter_label(pair);
-    row.exact_label = exact_label(pair);
-    row.type = pair.kind;
-    row.scene = "random";
-    dataset.add_row(row);
-  }
-  assign_splits(dataset, SplitSettings{0.6, 0.2, seed});
-  return dataset;
+  RandomPairSettings settings;
+  settings.rows = rows;
+  settings.seed = seed;
+  settings.features.count = feature_count;
+  return make_random_pair_dataset(settings);
 }
 
 }  // namespace clothcd::learning::test

@@ -8,6 +8,7 @@
 
 #include "clothcd/learning/network_training.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
+#include "clothcd/learning/random_pairs.hpp"
 #include "commands.hpp"
 
 namespace clothcd::cli {
@@ -17,6 +18,7 @@ struct TrainOptions {
   std::string dataset;
   std::string out;
   double rebalance = 0.0;
+  std::size_t random_pairs = 0;
   learning::TrainingSettings settings;
 };
 
@@ -30,6 +32,13 @@ void print_progress(std::size_t done, std::size_t total, std::size_t neurons) {
 }
 
 void run_train(const TrainOptions& options) {
+  if (options.random_pairs > 0) {
+    learning::RandomPairSettings random;
+    random.rows = options.random_pairs;
+    random.seed = options.settings.seed;
+    std::cerr << "writing " << random.rows << " labelled random pairs to " << options.dataset << '\n';
+    learning::write_pair_dataset_csv(learning::make_random_pair_dataset(random), options.dataset);
+  }
   learning::PairDataset dataset = learning::read_pair_dataset_csv(options.dataset);
   if (options.rebalance > 0.0)
     dataset = learning::rebalance_training_rows(dataset, options.rebalance, options.settings.seed);
@@ -72,6 +81,8 @@ void add_train_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--rebalance", options->rebalance,
                       "Keep at most RATIO x the minority class of the training rows (0: off)")->capture_default_str();
+  command->add_option("--random-pairs", options->random_pairs,
+                      "First write N seeded random CCD pairs (labelled by the CCD filters and exact CCD) to DATASET");
   command->callback([options] { run_train(*options); });
 }
 

@@ -28,7 +28,7 @@ using PairType = PairKind;
 using PairGeometry = ccd::CcdQuery;
 
 /// Number of features defined; FeatureSettings::count picks the first `count` of them.
-inline constexpr std::size_t kMaxPairFeatures = 17;
+inline constexpr std::size_t kMaxPairFeatures = 18;
 
 /// Version of the feature definition; stored in model cards and checked when a model is loaded.
 inline constexpr int kPairFeatureVersion = 1;
