@@ -112,6 +112,15 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
   for (int i = 0; i < face_count; ++i) position[face_order_[i]] = i;
   group_by_owner(topology.vertex_owner, position, owned_vertices_, vertex_offset_);
   group_by_owner(topology.edge_owner, position, owned_edges_, edge_offset_);
+  ordered_faces_.resize(3 * static_cast<std::size_t>(face_count));
+  for (int p = 0; p < face_count; ++p) {
+    for (int k = 0; k < 3; ++k) ordered_faces_[3 * p + k] = topology.faces(face_order_[p], k);
+  }
+  ordered_edges_.resize(2 * owned_edges_.size());
+  for (std::size_t i = 0; i < owned_edges_.size(); ++i) {
+    ordered_edges_[2 * i] = topology.edges[2 * owned_edges_[i]];
+    ordered_edges_[2 * i + 1] = topology.edges[2 * owned_edges_[i] + 1];
+  }
 
   boxes_.clear();
   spheres_.clear();
@@ -148,6 +157,12 @@ void Bvh::fit_obb_axes(const BodyTopology& topology, const Vertices& start, cons
 }
 
 void Bvh::refit(const SweptBoxes& boxes) {
+  ordered_face_boxes_.resize(face_order_.size());
+  for (std::size_t p = 0; p < face_order_.size(); ++p) ordered_face_boxes_[p] = boxes.faces[face_order_[p]];
+  ordered_vertex_boxes_.resize(owned_vertices_.size());
+  for (std::size_t i = 0; i < owned_vertices_.size(); ++i) ordered_vertex_boxes_[i] = boxes.vertices[owned_vertices_[i]];
+  ordered_edge_boxes_.resize(owned_edges_.size());
+  for (std::size_t i = 0; i < owned_edges_.size(); ++i) ordered_edge_boxes_[i] = boxes.edges[owned_edges_[i]];
   const int node_count = static_cast<int>(nodes_.size());
   looseness_ = 0.0;
   if (settings_.volume == VolumeKind::Obb) {
@@ -184,7 +199,7 @@ void Bvh::refit(const SweptBoxes& boxes) {
     const BvhNode& node = nodes_[i];
     if (node.is_leaf()) {
       FlatBox b = empty_flat_box();
-      for (int p = node.face_begin; p < node.face_end; ++p) b.expand(boxes.faces[face_order_[p]]);
+      for (int p = node.face_begin; p < node.face_end; ++p) b.expand(ordered_face_boxes_[p]);
       node_boxes[i] = b;
       if (settings_.volume == VolumeKind::Sphere) spheres_[i] = box_sphere(b);
       continue;

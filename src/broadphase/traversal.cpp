@@ -83,7 +83,7 @@ Range edge_range(const Bvh& bvh, const BvhNode& node) {
   return {bvh.edge_offset()[node.face_begin], bvh.edge_offset()[node.face_end]};
 }
 
-// Primitive tests of two leaves of different bodies.
+// Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf).
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, CandidateSet& out,
                        TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
@@ -92,28 +92,27 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, Can
   const BvhNode& lb = tb.nodes()[nb];
   const Range va = vertex_range(ta, la), vb = vertex_range(tb, lb);
   const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
-  for (int i = va.begin; i < va.end; ++i) {
-    const int v = ta.owned_vertices()[i];
-    const FlatBox& box = a.boxes->vertices[v];
-    for (int p = lb.face_begin; p < lb.face_end; ++p) {
-      const int f = tb.face_order()[p];
-      if (box.overlaps(b.boxes->faces[f])) out.vertex_face.push_back({a.body, v, b.body, f});
+  auto vertices_against_faces = [&out](const BodyView& vertex_body, Range vr, const BodyView& face_body,
+                                       const BvhNode& face_leaf) {
+    const Bvh& tv = *vertex_body.bvh;
+    const Bvh& tf = *face_body.bvh;
+    for (int i = vr.begin; i < vr.end; ++i) {
+      const FlatBox& box = tv.ordered_vertex_boxes()[i];
+      for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
+        if (box.overlaps(tf.ordered_face_boxes()[p])) {
+          out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
+        }
+      }
     }
-  }
-  for (int i = vb.begin; i < vb.end; ++i) {
-    const int v = tb.owned_vertices()[i];
-    const FlatBox& box = b.boxes->vertices[v];
-    for (int p = la.face_begin; p < la.face_end; ++p) {
-      const int f = ta.face_order()[p];
-      if (box.overlaps(a.boxes->faces[f])) out.vertex_face.push_back({b.body, v, a.body, f});
-    }
-  }
+  };
+  vertices_against_faces(a, va, b, lb);
+  vertices_against_faces(b, vb, a, la);
   for (int i = ea.begin; i < ea.end; ++i) {
-    const int e = ta.owned_edges()[i];
-    const FlatBox& box = a.boxes->edges[e];
+    const FlatBox& box = ta.ordered_edge_boxes()[i];
     for (int j = eb.begin; j < eb.end; ++j) {
-      const int g = tb.owned_edges()[j];
-      if (box.overlaps(b.boxes->edges[g])) out.edge_edge.push_back({a.body, e, b.body, g});
+      if (box.overlaps(tb.ordered_edge_boxes()[j])) {
+        out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]});
+      }
     }
   }
   stats.primitive_tests += static_cast<long>(va.end - va.begin) * (lb.face_end - lb.face_begin) +
@@ -124,20 +123,20 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, Can
 // Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself.
 void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, TraversalStats& stats) {
   const Bvh& t = *body.bvh;
-  const BodyTopology& topo = *body.topology;
-  const SweptBoxes& boxes = *body.boxes;
   const BvhNode& la = t.nodes()[na];
   const BvhNode& lb = t.nodes()[nb];
   const bool same = na == nb;
+  const int* faces = t.ordered_faces().data();
+  const int* edges = t.ordered_edges().data();
   auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf) {
     const Range vr = vertex_range(t, vertex_leaf);
     for (int i = vr.begin; i < vr.end; ++i) {
       const int v = t.owned_vertices()[i];
-      const FlatBox& box = boxes.vertices[v];
+      const FlatBox& box = t.ordered_vertex_boxes()[i];
       for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
-        const int f = t.face_order()[p];
-        if (!topo.face_has_vertex(f, v) && box.overlaps(boxes.faces[f])) {
-          out.vertex_face.push_back({body.body, v, body.body, f});
+        const int* f = faces + 3 * p;
+        if (f[0] != v && f[1] != v && f[2] != v && box.overlaps(t.ordered_face_boxes()[p])) {
+          out.vertex_face.push_back({body.body, v, body.body, t.face_order()[p]});
         }
       }
     }
@@ -147,12 +146,13 @@ void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, T
   if (!same) vertices_against_faces(lb, la);
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
   for (int i = ea.begin; i < ea.end; ++i) {
-    const int e = t.owned_edges()[i];
-    const FlatBox& box = boxes.edges[e];
+    const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
+    const FlatBox& box = t.ordered_edge_boxes()[i];
     for (int j = same ? i + 1 : eb.begin; j < eb.end; ++j) {
-      const int g = t.owned_edges()[j];
+      const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
       ++stats.primitive_tests;
-      if (!topo.edges_share_vertex(e, g) && box.overlaps(boxes.edges[g])) {
+      if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && box.overlaps(t.ordered_edge_boxes()[j])) {
+        const int e = t.owned_edges()[i], g = t.owned_edges()[j];
         out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
       }
     }

@@ -74,6 +74,17 @@ class Bvh {
   [[nodiscard]] const std::vector<int>& owned_edges() const { return owned_edges_; }
   /// #F + 1 prefix offsets into owned_edges.
   [[nodiscard]] const std::vector<int>& edge_offset() const { return edge_offset_; }
+  /// The swept boxes of the last build/update copied into tree order, so that the leaves' primitive tests read
+  /// contiguous memory: faces by position in face_order, vertices and edges by position in owned_vertices/owned_edges.
+  [[nodiscard]] const std::vector<FlatBox>& ordered_face_boxes() const { return ordered_face_boxes_; }
+  /// Vertex boxes in owned_vertices order (see ordered_face_boxes).
+  [[nodiscard]] const std::vector<FlatBox>& ordered_vertex_boxes() const { return ordered_vertex_boxes_; }
+  /// Edge boxes in owned_edges order (see ordered_face_boxes).
+  [[nodiscard]] const std::vector<FlatBox>& ordered_edge_boxes() const { return ordered_edge_boxes_; }
+  /// The three vertices of each face in face_order order (3 ints per position).
+  [[nodiscard]] const std::vector<int>& ordered_faces() const { return ordered_faces_; }
+  /// The two vertices of each edge in owned_edges order (2 ints per position).
+  [[nodiscard]] const std::vector<int>& ordered_edges() const { return ordered_edges_; }
   /// Node boxes (VolumeKind::Aabb), one per node.
   [[nodiscard]] const std::vector<FlatBox>& boxes() const { return boxes_; }
   /// Node spheres (VolumeKind::Sphere), one per node.
@@ -102,6 +113,11 @@ class Bvh {
   std::vector<geometry::Sphere> spheres_;
   std::vector<geometry::Obb> obbs_;
   std::vector<FlatBox> scratch_boxes_;
+  std::vector<FlatBox> ordered_face_boxes_;
+  std::vector<FlatBox> ordered_vertex_boxes_;
+  std::vector<FlatBox> ordered_edge_boxes_;
+  std::vector<int> ordered_faces_;
+  std::vector<int> ordered_edges_;
   double looseness_ = 0.0;
   double built_looseness_ = 0.0;
   int build_count_ = 0;
