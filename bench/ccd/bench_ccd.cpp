@@ -116,10 +116,9 @@ int main(int argc, char** argv) {
         if (record.query.kind == kind) records.push_back(record);
       if (records.empty()) continue;
       const std::string name = kind == PairKind::VertexFace ? "vf" : "ee";
-      for (const auto& [filter, mode] : {std::pair{ccd::CcdFilter::None, "none"},
-                                         std::pair{ccd::CcdFilter::NonPenetration, "nonpenetration"},
-                                         std::pair{ccd::CcdFilter::Projection, "projection"},
-                                         std::pair{ccd::CcdFilter::Combined, "combined"}})
+      for (const auto& [filter, mode] :
+           {std::pair{ccd::CcdFilter::None, "none"}, std::pair{ccd::CcdFilter::NonPenetration, "nonpenetration"},
+            std::pair{ccd::CcdFilter::Projection, "projection"}, std::pair{ccd::CcdFilter::Combined, "combined"}})
         rows.push_back(measure(records, name, filter, mode, repeat));
       std::cout << name << ": projection filter culls " << count_culled(records, false) << " of " << records.size()
                 << " with eq. (10)'s five directions, " << count_culled(records, true)
@@ -130,11 +129,11 @@ int main(int argc, char** argv) {
              "ns_per_query,filter_ns_per_query,median_ns,p99_ns,max_ns\n"
           << std::fixed;
     for (const Row& r : rows)
-      table << r.kind << ',' << r.mode << ',' << r.queries << ',' << r.truth_colliding << ',' << r.false_negatives << ','
-            << r.false_positives << ',' << std::setprecision(4)
+      table << r.kind << ',' << r.mode << ',' << r.queries << ',' << r.truth_colliding << ',' << r.false_negatives
+            << ',' << r.false_positives << ',' << std::setprecision(4)
             << static_cast<double>(r.culled) / static_cast<double>(std::max<std::size_t>(1, r.queries)) << ','
-            << r.exact_fallbacks << ',' << std::setprecision(1) << r.ns_per_query << ',' << r.filter_ns_per_query
-            << ',' << r.median_ns << ',' << r.p99_ns << ',' << r.max_ns << '\n';
+            << r.exact_fallbacks << ',' << std::setprecision(1) << r.ns_per_query << ',' << r.filter_ns_per_query << ','
+            << r.median_ns << ',' << r.p99_ns << ',' << r.max_ns << '\n';
     std::cout << table.str();
     if (!csv_path.empty()) std::ofstream(csv_path) << table.str();
     for (const Row& r : rows)

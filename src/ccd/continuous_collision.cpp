@@ -42,15 +42,21 @@ struct IVec {
   Interval c[3];
 };
 
-IVec operator-(const IVec& a, const IVec& b) { return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}}; }
+IVec operator-(const IVec& a, const IVec& b) {
+  return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}};
+}
 IVec hull(const IVec& a, const IVec& b) {
   return {{detail::hull(a.c[0], b.c[0]), detail::hull(a.c[1], b.c[1]), detail::hull(a.c[2], b.c[2])}};
 }
 IVec cross(const IVec& a, const IVec& b) {
   return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
 }
-Interval dot(const IVec& a, const IVec& b) { return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2]; }
-Interval determinant(const IVec& a, const IVec& b, const IVec& c) { return dot(a, cross(b, c)); }
+Interval dot(const IVec& a, const IVec& b) {
+  return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2];
+}
+Interval determinant(const IVec& a, const IVec& b, const IVec& c) {
+  return dot(a, cross(b, c));
+}
 
 using Positions = std::array<IVec, 4>;
 
@@ -93,8 +99,7 @@ PointSet difference_points(PairKind kind, const Positions& x) {
 std::array<Interval, 4> bernstein_of_d(const Positions& x0, const Positions& x1) {
   const IVec a0 = x0[1] - x0[0], b0 = x0[2] - x0[0], c0 = x0[3] - x0[0];
   const IVec a1 = x1[1] - x1[0], b1 = x1[2] - x1[0], c1 = x1[3] - x1[0];
-  return {determinant(a0, b0, c0),
-          determinant(a1, b0, c0) + determinant(a0, b1, c0) + determinant(a0, b0, c1),
+  return {determinant(a0, b0, c0), determinant(a1, b0, c0) + determinant(a0, b1, c0) + determinant(a0, b0, c1),
           determinant(a1, b1, c0) + determinant(a1, b0, c1) + determinant(a0, b1, c1), determinant(a1, b1, c1)};
 }
 
@@ -230,8 +235,8 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
 double normal_length_upper_bound(PairKind kind, const Positions& x0, const Positions& x1) {
   Positions box;
   for (int i = 0; i < 4; ++i) box[i] = hull(x0[i], x1[i]);
-  const IVec n = kind == PairKind::VertexFace ? cross(box[2] - box[1], box[3] - box[1])
-                                              : cross(box[1] - box[0], box[3] - box[2]);
+  const IVec n =
+      kind == PairKind::VertexFace ? cross(box[2] - box[1], box[3] - box[1]) : cross(box[1] - box[0], box[3] - box[2]);
   return detail::round_up(std::sqrt(detail::round_up(dot(n, n).hi)));
 }
 
@@ -370,9 +375,8 @@ CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& setting
   if (settings.thickness == 0.0) return contact_without_thickness(query);
   if (projection_filter_culls(query, settings)) return CcdResult{};
   Search search{query, settings.thickness, 1.0};
-  if (!fits_fast_path(query) ||
-      search_thick_contact(search, 0.0, 1.0, positions_at(query, 0.0), positions_at(query, 1.0), 0) !=
-          PieceOutcome::Clear) {
+  if (!fits_fast_path(query) || search_thick_contact(search, 0.0, 1.0, positions_at(query, 0.0),
+                                                     positions_at(query, 1.0), 0) != PieceOutcome::Clear) {
     const double toi = fits_fast_path(query) ? search.toi : 0.0;
     const CcdResult touching = contact_without_thickness(query);
     CcdResult result =

@@ -133,9 +133,13 @@ bool free_of_roots(const AlgebraicPoint& point, const PreparedPolynomial& f) {
 
 }  // namespace
 
-Polynomial constant(const mpq_class& value) { return trimmed(Polynomial{{value}}); }
+Polynomial constant(const mpq_class& value) {
+  return trimmed(Polynomial{{value}});
+}
 
-Polynomial linear(const mpq_class& a, const mpq_class& b) { return trimmed(Polynomial{{a, b}}); }
+Polynomial linear(const mpq_class& a, const mpq_class& b) {
+  return trimmed(Polynomial{{a, b}});
+}
 
 Polynomial operator+(const Polynomial& p, const Polynomial& q) {
   Polynomial r;
@@ -162,9 +166,13 @@ Polynomial operator*(const Polynomial& p, const Polynomial& q) {
   return trimmed(std::move(r));
 }
 
-int degree(const Polynomial& p) { return static_cast<int>(p.c.size()) - 1; }
+int degree(const Polynomial& p) {
+  return static_cast<int>(p.c.size()) - 1;
+}
 
-bool is_zero(const Polynomial& p) { return p.c.empty(); }
+bool is_zero(const Polynomial& p) {
+  return p.c.empty();
+}
 
 mpq_class evaluate(const Polynomial& p, const mpq_class& t) {
   mpq_class value = 0;

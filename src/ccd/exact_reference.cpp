@@ -24,7 +24,9 @@ namespace {
 
 using Vector = std::array<Polynomial, 3>;
 
-Vector subtract(const Vector& a, const Vector& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vector subtract(const Vector& a, const Vector& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 
 Polynomial determinant(const Vector& a, const Vector& b, const Vector& c) {
   return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
@@ -32,7 +34,7 @@ Polynomial determinant(const Vector& a, const Vector& b, const Vector& c) {
 
 // The polynomials whose signs decide the question, with index tables for the predicate.
 struct SignSystem {
-  std::vector<Polynomial> polys;  // polys[0] = D
+  std::vector<Polynomial> polys;                                      // polys[0] = D
   mutable std::vector<std::unique_ptr<PreparedPolynomial>> prepared;  // filled on first use, it costs GMP divisions
 
   const PreparedPolynomial& prepared_poly(int i) const {
@@ -53,8 +55,7 @@ SignSystem build_system(PairKind kind, const RationalPoints& points) {
   const mpq_class scale(common_denominator);
   std::array<Vector, 4> x;
   for (int i = 0; i < 4; ++i)
-    for (int d = 0; d < 3; ++d)
-      x[i][d] = linear(points[i][d] * scale, (points[i + 4][d] - points[i][d]) * scale);
+    for (int d = 0; d < 3; ++d) x[i][d] = linear(points[i][d] * scale, (points[i + 4][d] - points[i][d]) * scale);
   SignSystem system;
   system.polys.push_back(determinant(subtract(x[1], x[0]), subtract(x[2], x[0]), subtract(x[3], x[0])));
   std::vector<Vector> w;
@@ -149,7 +150,8 @@ ExactAnswer exact_collision(PairKind kind, const RationalPoints& points) {
     // sample inside every open piece between them. Once no polynomial has a root in [lo, hi] but the point itself, lo
     // and hi lie in the pieces next to an irrational root; the midpoints of consecutive samples cover the rest.
     std::vector<PreparedPolynomial> all_prepared;
-    for (std::size_t i = 0; i < system.polys.size(); ++i) all_prepared.push_back(system.prepared_poly(static_cast<int>(i)));
+    for (std::size_t i = 0; i < system.polys.size(); ++i)
+      all_prepared.push_back(system.prepared_poly(static_cast<int>(i)));
     std::vector<mpq_class> samples{mpq_class(0), mpq_class(1)};
     for (std::size_t i = 1; i < system.polys.size(); ++i) {
       if (degree(system.polys[i]) < 1) continue;

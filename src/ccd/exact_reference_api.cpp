@@ -6,8 +6,7 @@
 
 namespace clothcd::ccd {
 
-bool exact_collision_reference(PairKind kind,
-                               const std::array<std::array<std::array<std::string, 2>, 3>, 8>& points) {
+bool exact_collision_reference(PairKind kind, const std::array<std::array<std::array<std::string, 2>, 3>, 8>& points) {
   exact::RationalPoints rational;
   for (int i = 0; i < 8; ++i) {
     for (int d = 0; d < 3; ++d) {

@@ -82,7 +82,8 @@ bool nonpenetration_filter_culls(const CcdQuery& query, const CcdSettings& setti
   const Bounded b1a = determinant(a[1], b[0], c[0]);
   const Bounded b1b = determinant(a[0], b[1], c[0]);
   const Bounded b1c = determinant(a[0], b[0], c[1]);
-  if (certain_sign(b1a.value + b1b.value + b1c.value, b1a.magnitude + b1b.magnitude + b1c.magnitude) != s0) return false;
+  if (certain_sign(b1a.value + b1b.value + b1c.value, b1a.magnitude + b1b.magnitude + b1c.magnitude) != s0)
+    return false;
   const Bounded b2a = determinant(a[1], b[1], c[0]);
   const Bounded b2b = determinant(a[1], b[0], c[1]);
   const Bounded b2c = determinant(a[0], b[1], c[1]);
@@ -105,8 +106,8 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
   for (const auto* positions : {&query.start, &query.end}) {
     const auto& x = *positions;
     // Any fixed vector is a valid direction, so the rounded normal needs no error bound of its own.
-    const Eigen::Vector3d s = query.kind == PairKind::VertexFace ? (x[2] - x[1]).cross(x[3] - x[1])
-                                                                 : (x[1] - x[0]).cross(x[3] - x[2]);
+    const Eigen::Vector3d s =
+        query.kind == PairKind::VertexFace ? (x[2] - x[1]).cross(x[3] - x[1]) : (x[1] - x[0]).cross(x[3] - x[2]);
     if (!s.allFinite() || s.squaredNorm() == 0.0) continue;
     if (separated_along(query, s, threshold_for(settings.thickness, s))) return true;
   }

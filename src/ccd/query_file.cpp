@@ -72,13 +72,13 @@ struct Row {
 Row parse_row(const std::string& file, std::size_t line_number, const std::string& line) {
   const std::vector<std::string> columns = split_columns(line);
   if (columns.size() != 6 && columns.size() != 7)
-    throw QueryFileError(file, line_number,
-                         "expected 6 or 7 comma-separated integers, found " + std::to_string(columns.size()) +
-                             " columns");
+    throw QueryFileError(
+        file, line_number,
+        "expected 6 or 7 comma-separated integers, found " + std::to_string(columns.size()) + " columns");
   for (std::size_t c = 0; c < columns.size(); ++c)
     if (!is_integer(columns[c]))
-      throw QueryFileError(file, line_number, "column " + std::to_string(c + 1) + " is not an integer: '" +
-                                                  columns[c] + "'");
+      throw QueryFileError(file, line_number,
+                           "column " + std::to_string(c + 1) + " is not an integer: '" + columns[c] + "'");
   Row row;
   row.line = line_number;
   for (int d = 0; d < 3; ++d) {
@@ -109,8 +109,8 @@ QueryRecord make_record(const std::string& file, PairKind kind, const std::vecto
   for (std::size_t i = 0; i < 8; ++i) {
     const Row& row = rows[first + i];
     if (row.truth != record.truth)
-      throw QueryFileError(file, row.line, "ground truth differs from the query's first row (line " +
-                                               std::to_string(record.line) + ")");
+      throw QueryFileError(
+          file, row.line, "ground truth differs from the query's first row (line " + std::to_string(record.line) + ")");
     record.rational[i] = row.text;
     record.exactly_representable = record.exactly_representable && row.exact;
     (i < 4 ? record.query.start[i] : record.query.end[i - 4]) = row.value;
@@ -133,8 +133,9 @@ std::optional<PairKind> pair_kind_from_path(const std::string& path) {
 std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind) {
   if (!kind) kind = pair_kind_from_path(path);
   if (!kind)
-    throw QueryFileError(path, 0, "pair type unknown: pass --type vf|ee or put the file under a vertex-face or edge-edge "
-                                  "folder");
+    throw QueryFileError(path, 0,
+                         "pair type unknown: pass --type vf|ee or put the file under a vertex-face or edge-edge "
+                         "folder");
   std::ifstream in(path);
   if (!in) throw QueryFileError(path, 0, "cannot open file");
   std::vector<Row> rows;
@@ -156,7 +157,8 @@ std::vector<QueryRecord> read_queries(const std::string& path, std::optional<Pai
   if (!fs::exists(path, error)) throw QueryFileError(path, 0, "no such file or folder");
   if (!fs::is_directory(path, error)) return read_query_file(path, kind);
   std::vector<std::string> files;
-  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(path, fs::directory_options::follow_directory_symlink))
+  for (const fs::directory_entry& entry :
+       fs::recursive_directory_iterator(path, fs::directory_options::follow_directory_symlink))
     if (entry.is_regular_file() && entry.path().extension() == ".csv") files.push_back(entry.path().string());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw QueryFileError(path, 0, "folder holds no .csv query files");

@@ -11,7 +11,8 @@ namespace clothcd::test {
 using Eigen::Vector3d;
 
 /// A query from its four start and four end points (CcdQuery order).
-inline ccd::CcdQuery make_query(PairKind kind, const std::array<Vector3d, 4>& start, const std::array<Vector3d, 4>& end) {
+inline ccd::CcdQuery make_query(PairKind kind, const std::array<Vector3d, 4>& start,
+                                const std::array<Vector3d, 4>& end) {
   ccd::CcdQuery query;
   query.kind = kind;
   query.start = start;

@@ -59,21 +59,20 @@ TEST_CASE("touching exactly at t = 0 and at t = 1 counts", "[ccd][vertex-face]")
 }
 
 TEST_CASE("vertex through an edge or a corner of the face hits (closed triangle)", "[ccd][vertex-face]") {
-  check_query(vertex_past_triangle({0.5, 0, 1}, {0.5, 0, -1}), true);    // midpoint of edge f0 f1
+  check_query(vertex_past_triangle({0.5, 0, 1}, {0.5, 0, -1}), true);      // midpoint of edge f0 f1
   check_query(vertex_past_triangle({0.5, 0.5, 1}, {0.5, 0.5, -1}), true);  // midpoint of the hypotenuse
-  check_query(vertex_past_triangle({1, 0, 1}, {1, 0, -1}), true);        // corner f1
+  check_query(vertex_past_triangle({1, 0, 1}, {1, 0, -1}), true);          // corner f1
   // One ulp-scale step beyond the hypotenuse: outside, and only exact arithmetic can tell.
   check_query(vertex_past_triangle({0.5, 0.5 + 0x1p-50, 1}, {0.5, 0.5 + 0x1p-50, -1}), false);
 }
 
 TEST_CASE("zero-area face: only its segment can be hit", "[ccd][vertex-face]") {
   const Vector3d f0(0, 0, 0), f1(1, 0, 0), f2(2, 0, 0);  // collinear: the face is the segment [0, 2] on the x axis
-  check_query(make_query(PairKind::VertexFace, {Vector3d(0.5, 1, 0), f0, f1, f2},
-                         {Vector3d(0.5, -1, 0), f0, f1, f2}),
+  check_query(make_query(PairKind::VertexFace, {Vector3d(0.5, 1, 0), f0, f1, f2}, {Vector3d(0.5, -1, 0), f0, f1, f2}),
               true);  // passes through (0.5, 0, 0) on the segment
-  check_query(make_query(PairKind::VertexFace, {Vector3d(0.5, 1, 0.125), f0, f1, f2},
-                         {Vector3d(0.5, -1, 0.125), f0, f1, f2}),
-              false);  // passes 0.125 above it
+  check_query(
+      make_query(PairKind::VertexFace, {Vector3d(0.5, 1, 0.125), f0, f1, f2}, {Vector3d(0.5, -1, 0.125), f0, f1, f2}),
+      false);  // passes 0.125 above it
   check_query(make_query(PairKind::VertexFace, {Vector3d(3, 1, 0), f0, f1, f2}, {Vector3d(3, -1, 0), f0, f1, f2}),
               false);  // crosses the line beyond the segment's end
 }
@@ -90,10 +89,10 @@ TEST_CASE("tiny and huge coordinates behave like unit ones", "[ccd][vertex-face]
     INFO("scale " << scale);
     check_query(scaled(vertex_past_triangle({0.25, 0.25, 1}, {0.25, 0.25, -1}), scale), true);
     check_query(scaled(vertex_past_triangle({0.6, 0.6, 1}, {0.6, 0.6, -1}), scale), false);
-    check_query(scaled(edge_past_x_axis({Vector3d(0, -1, 1), Vector3d(0, 1, 1)},
-                                        {Vector3d(0, -1, -1), Vector3d(0, 1, -1)}),
-                       scale),
-                true);
+    check_query(
+        scaled(edge_past_x_axis({Vector3d(0, -1, 1), Vector3d(0, 1, 1)}, {Vector3d(0, -1, -1), Vector3d(0, 1, -1)}),
+               scale),
+        true);
   }
 }
 
@@ -104,8 +103,9 @@ TEST_CASE("crossing edges hit, edges passing beyond an end miss", "[ccd][edge-ed
   check_query(crossing, true);
   CHECK(ccd::continuous_collision(crossing).toi == Approx(0.5).margin(1e-6));
   // Same motion at x = 1.5, beyond a's end at x = 1.
-  check_query(edge_past_x_axis({Vector3d(1.5, -1, 1), Vector3d(1.5, 1, 1)}, {Vector3d(1.5, -1, -1), Vector3d(1.5, 1, -1)}),
-              false);
+  check_query(
+      edge_past_x_axis({Vector3d(1.5, -1, 1), Vector3d(1.5, 1, 1)}, {Vector3d(1.5, -1, -1), Vector3d(1.5, 1, -1)}),
+      false);
   // Exactly at a's end point (x = 1): touching counts.
   check_query(edge_past_x_axis({Vector3d(1, -1, 1), Vector3d(1, 1, 1)}, {Vector3d(1, -1, -1), Vector3d(1, 1, -1)}),
               true);
@@ -113,15 +113,19 @@ TEST_CASE("crossing edges hit, edges passing beyond an end miss", "[ccd][edge-ed
 
 TEST_CASE("parallel edges: D(t) is identically zero", "[ccd][edge-edge]") {
   // b parallel to a, sweeping through it in the plane z = 0: overlapping segments meet.
-  check_query(edge_past_x_axis({Vector3d(-0.5, 1, 0), Vector3d(0.5, 1, 0)}, {Vector3d(-0.5, -1, 0), Vector3d(0.5, -1, 0)}),
-              true);
+  check_query(
+      edge_past_x_axis({Vector3d(-0.5, 1, 0), Vector3d(0.5, 1, 0)}, {Vector3d(-0.5, -1, 0), Vector3d(0.5, -1, 0)}),
+      true);
   // Same sweep, but b lies beyond a's end along x: the segments never overlap.
-  check_query(edge_past_x_axis({Vector3d(2, 1, 0), Vector3d(3, 1, 0)}, {Vector3d(2, -1, 0), Vector3d(3, -1, 0)}), false);
-  // Parallel, in the plane z = 1 all the time.
-  check_query(edge_past_x_axis({Vector3d(-0.5, 1, 1), Vector3d(0.5, 1, 1)}, {Vector3d(-0.5, -1, 1), Vector3d(0.5, -1, 1)}),
+  check_query(edge_past_x_axis({Vector3d(2, 1, 0), Vector3d(3, 1, 0)}, {Vector3d(2, -1, 0), Vector3d(3, -1, 0)}),
               false);
+  // Parallel, in the plane z = 1 all the time.
+  check_query(
+      edge_past_x_axis({Vector3d(-0.5, 1, 1), Vector3d(0.5, 1, 1)}, {Vector3d(-0.5, -1, 1), Vector3d(0.5, -1, 1)}),
+      false);
   // Collinear, sliding along the x axis into a.
-  check_query(edge_past_x_axis({Vector3d(3, 0, 0), Vector3d(4, 0, 0)}, {Vector3d(0.5, 0, 0), Vector3d(1.5, 0, 0)}), true);
+  check_query(edge_past_x_axis({Vector3d(3, 0, 0), Vector3d(4, 0, 0)}, {Vector3d(0.5, 0, 0), Vector3d(1.5, 0, 0)}),
+              true);
 }
 
 TEST_CASE("edge end points meeting at t = 0 or t = 1", "[ccd][edge-edge]") {
@@ -135,8 +139,9 @@ TEST_CASE("edge end points meeting at t = 0 or t = 1", "[ccd][edge-edge]") {
 }
 
 TEST_CASE("degenerate edge (a point) through the other edge", "[ccd][edge-edge]") {
-  check_query(edge_past_x_axis({Vector3d(0.25, 1, 0), Vector3d(0.25, 1, 0)}, {Vector3d(0.25, -1, 0), Vector3d(0.25, -1, 0)}),
-              true);
+  check_query(
+      edge_past_x_axis({Vector3d(0.25, 1, 0), Vector3d(0.25, 1, 0)}, {Vector3d(0.25, -1, 0), Vector3d(0.25, -1, 0)}),
+      true);
   check_query(edge_past_x_axis({Vector3d(0.25, 1, 0.5), Vector3d(0.25, 1, 0.5)},
                                {Vector3d(0.25, -1, 0.5), Vector3d(0.25, -1, 0.5)}),
               false);
@@ -182,8 +187,8 @@ TEST_CASE("invalid input: NaN coordinates and negative thickness", "[ccd][errors
 TEST_CASE("exact reference on rational text coordinates", "[ccd][reference]") {
   // Vertex from (1/3, 1/3, 1) to (1/3, 1/3, -1) through the unit triangle: 1/3 is not a double, the reference is exact.
   std::array<std::array<std::array<std::string, 2>, 3>, 8> points;
-  const std::array<std::array<const char*, 3>, 4> numerators{{{"1", "1", "1"}, {"0", "0", "0"}, {"1", "0", "0"},
-                                                               {"0", "1", "0"}}};
+  const std::array<std::array<const char*, 3>, 4> numerators{
+      {{"1", "1", "1"}, {"0", "0", "0"}, {"1", "0", "0"}, {"0", "1", "0"}}};
   for (int i = 0; i < 8; ++i)
     for (int d = 0; d < 3; ++d) points[i][d] = {numerators[i % 4][d], i % 4 == 0 && d < 2 ? "3" : "1"};
   points[4][2] = {"-1", "1"};

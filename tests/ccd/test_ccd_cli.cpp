@@ -28,8 +28,8 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
   // Colliding (ends below the face), separated (stops at z = 1/2), and a false ground truth of 0 for a colliding one.
   write_file(dir / "vertex-face/a.csv", vertex_face_query("-1,1", 1) + vertex_face_query("1,2", 0));
   write_file(dir / "vertex-face/b.csv", vertex_face_query("-1,2", 0));
-  const auto run = run_cli("ccd '" + dir.path().string() + "' --filter combined --per-query '" +
-                           (dir / "out.csv").string() + "'");
+  const auto run =
+      run_cli("ccd '" + dir.path().string() + "' --filter combined --per-query '" + (dir / "out.csv").string() + "'");
   REQUIRE(run.exit_code == 0);
   CHECK_THAT(run.output, Catch::Contains("queries:               3"));
   CHECK_THAT(run.output, Catch::Contains("colliding:             2"));
@@ -44,8 +44,8 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
 
   const auto json = run_cli("ccd '" + (dir / "vertex-face/a.csv").string() + "' --json --thickness 0.01");
   REQUIRE(json.exit_code == 0);
-  CHECK_THAT(json.output, Catch::StartsWith("{") && Catch::Contains("\"queries\": 2") &&
-                              Catch::Contains("\"false_negatives\": 0"));
+  CHECK_THAT(json.output,
+             Catch::StartsWith("{") && Catch::Contains("\"queries\": 2") && Catch::Contains("\"false_negatives\": 0"));
 }
 
 TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cli][errors]") {

@@ -55,9 +55,9 @@ class QueryGenerator {
       query.end[i] = coin() ? query.start[i] : grid_vector();
       if (planar) query.start[i].z() = query.end[i].z() = 0.0;
     }
-    if (coin()) query.end[pick(4)] = query.end[pick(4)];            // coincident points at the end
-    if (coin()) query.start[pick(4)] = query.start[pick(4)];        // ... or at the start
-    if (kind == PairKind::EdgeEdge && coin()) {                     // parallel edges
+    if (coin()) query.end[pick(4)] = query.end[pick(4)];      // coincident points at the end
+    if (coin()) query.start[pick(4)] = query.start[pick(4)];  // ... or at the start
+    if (kind == PairKind::EdgeEdge && coin()) {               // parallel edges
       const Vector3d direction = grid_vector();
       query.start[3] = query.start[2] + direction;
       query.end[3] = query.end[2] + direction;
@@ -71,7 +71,9 @@ class QueryGenerator {
   double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random_); }
   bool coin() { return std::bernoulli_distribution(0.5)(random_); }
   int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(random_); }
-  Vector3d vector(double extent) { return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)}; }
+  Vector3d vector(double extent) {
+    return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)};
+  }
   Vector3d grid_vector() {
     std::uniform_int_distribution<int> step(-2, 2);
     return Vector3d(step(random_), step(random_), step(random_)) * 0.5;
@@ -99,7 +101,7 @@ void check_against_reference(const ccd::CcdQuery& query, Tally& tally) {
   INFO("end   " << query.end[0].transpose() << " | " << query.end[1].transpose() << " | " << query.end[2].transpose()
                 << " | " << query.end[3].transpose());
   REQUIRE((result.hit || !expected));  // never a false negative
-  CHECK(result.hit == expected);      // exact at thickness 0
+  CHECK(result.hit == expected);       // exact at thickness 0
   if (result.hit) {
     CHECK(result.toi >= 0.0);
     CHECK(result.toi <= 1.0);
@@ -168,7 +170,8 @@ TEST_CASE("thickness: every touching pair is still reported", "[ccd][thickness][
 TEST_CASE("batched filtering matches the single-query filters", "[ccd][filters]") {
   QueryGenerator generator(11u);
   std::vector<ccd::CcdQuery> queries;
-  for (int i = 0; i < 200; ++i) queries.push_back(generator.random_query(i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge));
+  for (int i = 0; i < 200; ++i)
+    queries.push_back(generator.random_query(i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge));
   std::vector<std::uint8_t> keep;
   const std::size_t kept = ccd::filter_batch(queries, ccd::CcdFilter::Combined, {}, keep);
   REQUIRE(keep.size() == queries.size());

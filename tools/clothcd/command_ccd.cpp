@@ -147,10 +147,9 @@ void run_ccd(const CcdCommandOptions& options) {
       summary.false_negatives += !result.hit && record.truth == 1 ? 1 : 0;
     }
     if (per_query.is_open())
-      per_query << record.file << ',' << record.line << ','
-                << (record.query.kind == PairKind::VertexFace ? "vf" : "ee") << ',' << record.truth << ','
-                << (result.hit ? 1 : 0) << ',' << state_name(result.state) << ',' << result.toi << ','
-                << (keep[i] ? 0 : 1) << '\n';
+      per_query << record.file << ',' << record.line << ',' << (record.query.kind == PairKind::VertexFace ? "vf" : "ee")
+                << ',' << record.truth << ',' << (result.hit ? 1 : 0) << ',' << state_name(result.state) << ','
+                << result.toi << ',' << (keep[i] ? 0 : 1) << '\n';
   }
   if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
   print_summary(options, summary);

@@ -21,15 +21,16 @@ namespace clothcd::ccd {
 /// One CCD query: four points at the start (t = 0) and end (t = 1) of the step, moving linearly in between.
 /// VertexFace: {vertex, t0, t1, t2}; EdgeEdge: {a0, a1, b0, b1} (the order of the public benchmark's CSV files).
 struct CcdQuery {
-  PairKind kind = PairKind::VertexFace;             ///< Pair kind.
-  std::array<Eigen::Vector3d, 4> start{};           ///< Positions at t = 0.
-  std::array<Eigen::Vector3d, 4> end{};             ///< Positions at t = 1.
+  PairKind kind = PairKind::VertexFace;    ///< Pair kind.
+  std::array<Eigen::Vector3d, 4> start{};  ///< Positions at t = 0.
+  std::array<Eigen::Vector3d, 4> end{};    ///< Positions at t = 1.
 };
 
 /// Settings shared by all queries of a step.
 struct CcdSettings {
-  /// Minimum separation (same length unit as the coordinates, >= 0). With thickness > 0 a pair collides when its distance
-  /// gets <= thickness during the step; that test is conservative (it may report pairs that stay slightly farther apart).
+  /// Minimum separation (same length unit as the coordinates, >= 0). With thickness > 0 a pair collides when its
+  /// distance gets <= thickness during the step; that test is conservative (it may report pairs that stay slightly
+  /// farther apart).
   double thickness = 0.0;
 };
 
@@ -42,8 +43,8 @@ enum class CcdState : std::uint8_t {
 
 /// Result of continuous_collision.
 struct CcdResult {
-  bool hit = false;                   ///< True for Hit and ConservativeHit.
-  double toi = 1.0;                   ///< Lower bound of the earliest time of impact in [0, 1] (1 when separated).
+  bool hit = false;                      ///< True for Hit and ConservativeHit.
+  double toi = 1.0;                      ///< Lower bound of the earliest time of impact in [0, 1] (1 when separated).
   CcdState state = CcdState::Separated;  ///< How the answer was established.
   /// VertexFace: barycentric weights (w1, w2) of the contact on the triangle; EdgeEdge: (s on edge a, u on edge b).
   /// Approximate (evaluated at toi); {0, 0} when unknown.
@@ -78,8 +79,9 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 /// Throws std::invalid_argument on non-finite coordinates.
 [[nodiscard]] bool exact_collision_reference(const CcdQuery& query);
 
-/// Exact reference on rational coordinates: points[i] = {x, y, z} with each coordinate a pair of decimal integer strings
-/// {numerator, denominator}; point order as in the benchmark CSV (the four start points, then the four end points).
+/// Exact reference on rational coordinates: points[i] = {x, y, z} with each coordinate a pair of decimal integer
+/// strings {numerator, denominator}; point order as in the benchmark CSV (the four start points, then the four end
+/// points).
 [[nodiscard]] bool exact_collision_reference(PairKind kind,
                                              const std::array<std::array<std::array<std::string, 2>, 3>, 8>& points);
 

@@ -42,8 +42,8 @@ struct QueryRecord {
 [[nodiscard]] std::optional<PairKind> pair_kind_from_path(const std::string& path);
 
 /// Reads one CSV file. kind: the pair kind, or nullopt to take it from the path (QueryFileError when it cannot).
-/// Throws QueryFileError on unreadable files, wrong column counts, non-integers, zero denominators, a ground truth other
-/// than 0/1 or differing within a query, and a row count not divisible by 8.
+/// Throws QueryFileError on unreadable files, wrong column counts, non-integers, zero denominators, a ground truth
+/// other than 0/1 or differing within a query, and a row count not divisible by 8.
 [[nodiscard]] std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind = {});
 
 /// Reads a CSV file, or every *.csv file under a folder (recursively, in sorted path order); kind as above.
