@@ -144,8 +144,8 @@ TEST_CASE("Minimum-area rectangle matches brute force over hull edges", "[geomet
   std::mt19937_64 random(5);
   std::normal_distribution<double> n(0, 1);
   std::vector<Eigen::Vector2d> hull;
-  for (int trial = 0; trial < 50; ++trial) {
-    const int count = 3 + trial * 3;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int count = 3 + trial * 2;
     std::vector<Eigen::Vector2d> points(static_cast<size_t>(count));
     for (auto& p : points) p = {n(random) * 3, n(random)};
     // Brute force over every pair's direction (a superset of the hull edges).
