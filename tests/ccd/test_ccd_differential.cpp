@@ -120,7 +120,7 @@ TEST_CASE("random queries: fast CCD and filters never miss a reference collision
   const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
   QueryGenerator generator(kind == PairKind::VertexFace ? 20261122u : 4242u);
   Tally tally;
-  for (int i = 0; i < 400; ++i) check_against_reference(generator.random_query(kind), tally);
+  for (int i = 0; i < 300; ++i) check_against_reference(generator.random_query(kind), tally);
   // The generator must produce a meaningful share of both answers, or the test proves nothing.
   CHECK(tally.reference_hits > tally.queries / 5);
   CHECK(tally.reference_hits < tally.queries * 4 / 5);
@@ -130,7 +130,7 @@ TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference 
   const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
   QueryGenerator generator(kind == PairKind::VertexFace ? 77u : 78u);
   Tally tally;
-  for (int i = 0; i < 250; ++i) check_against_reference(generator.degenerate_query(kind), tally);
+  for (int i = 0; i < 150; ++i) check_against_reference(generator.degenerate_query(kind), tally);
   CHECK(tally.reference_hits > tally.queries / 10);
 }
 
@@ -157,7 +157,7 @@ TEST_CASE("thickness: every touching pair is still reported", "[ccd][thickness][
   QueryGenerator generator(5u);
   ccd::CcdSettings settings;
   settings.thickness = 1e-3;
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < 150; ++i) {
     const auto kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
     const ccd::CcdQuery query = i % 3 ? generator.random_query(kind) : generator.degenerate_query(kind);
     if (!ccd::exact_collision_reference(query)) continue;
