@@ -34,11 +34,10 @@ Eigen::Vector3d start_position(const VertexRef& v, const StepContext& context) {
   return (*context.obstacle_start)[v.body - 1].row(v.vertex).transpose();
 }
 
-/// Distance between the pair's two primitives, with the positions given by `position(VertexRef)`.
+/// Distance between the pair's two primitives, with the position of the pair's i-th vertex given by `position(i)`.
 template <class Position>
 double primitive_distance(const Collision& c, const Position& position) {
-  const Eigen::Vector3d p0 = position(c.vertices[0]), p1 = position(c.vertices[1]), p2 = position(c.vertices[2]),
-                        p3 = position(c.vertices[3]);
+  const Eigen::Vector3d p0 = position(0), p1 = position(1), p2 = position(2), p3 = position(3);
   if (c.kind == PairKind::EdgeEdge) return std::sqrt(segment_segment_distance_squared(p0, p1, p2, p3));
   double d = std::min({segment_segment_distance_squared(p0, p0, p1, p2), segment_segment_distance_squared(p0, p0, p2, p3),
                        segment_segment_distance_squared(p0, p0, p3, p1)});
@@ -87,26 +86,35 @@ void rebuild_contact(Collision& c, const StepContext& context, const Vertices& c
 
 int discard_disproved(std::vector<Collision>& collisions, const StepContext& context, const Vertices& cloth_end,
                       double thickness) {
+  constexpr int kPieces = 8;  // second try: the bound on kPieces sub-intervals of the step, each m / kPieces long
   const size_t before = collisions.size();
-  auto start = [&](const VertexRef& v) { return start_position(v, context); };
-  auto end = [&](const VertexRef& v) { return end_position(v, context, cloth_end); };
-  collisions.erase(std::remove_if(collisions.begin(), collisions.end(),
-                                  [&](const Collision& c) {
-                                    if (!c.conservative) return false;
-                                    const int split = c.kind == PairKind::VertexFace ? 1 : 2;
-                                    double m = 0;
-                                    for (int i = 0; i < split; ++i) {
-                                      for (int j = split; j < 4; ++j) {
-                                        const Eigen::Vector3d relative = (end(c.vertices[i]) - start(c.vertices[i])) -
-                                                                         (end(c.vertices[j]) - start(c.vertices[j]));
-                                        m = std::max(m, relative.norm());
-                                      }
-                                    }
-                                    const double bound =
-                                        0.5 * (primitive_distance(c, start) + primitive_distance(c, end) - m);
-                                    return bound > thickness * (1 + 1e-9) + 1e-12;
-                                  }),
-                   collisions.end());
+  auto proved_apart = [&](const Collision& c) {
+    if (!c.conservative) return false;
+    Eigen::Vector3d x0[4], dx[4];
+    for (int i = 0; i < 4; ++i) {
+      x0[i] = start_position(c.vertices[i], context);
+      dx[i] = end_position(c.vertices[i], context, cloth_end) - x0[i];
+    }
+    const int split = c.kind == PairKind::VertexFace ? 1 : 2;
+    double m = 0;
+    for (int i = 0; i < split; ++i) {
+      for (int j = split; j < 4; ++j) m = std::max(m, (dx[i] - dx[j]).norm());
+    }
+    auto distance_at = [&](double t) {
+      return primitive_distance(c, [&](int i) { return Eigen::Vector3d(x0[i] + t * dx[i]); });
+    };
+    const double limit = thickness * (1 + 1e-9) + 1e-12;
+    const double d0 = distance_at(0.0), d1 = distance_at(1.0);
+    if (0.5 * (d0 + d1 - m) > limit) return true;
+    double previous = d0;
+    for (int k = 1; k <= kPieces; ++k) {
+      const double next = k == kPieces ? d1 : distance_at(static_cast<double>(k) / kPieces);
+      if (0.5 * (previous + next - m / kPieces) <= limit) return false;
+      previous = next;
+    }
+    return true;
+  };
+  collisions.erase(std::remove_if(collisions.begin(), collisions.end(), proved_apart), collisions.end());
   for (Collision& c : collisions) {
     if (c.conservative) rebuild_contact(c, context, cloth_end);
   }

@@ -13,8 +13,8 @@ namespace clothcd::simulation {
 
 /// Settings of the linear solve.
 struct IntegratorSettings {
-  int max_cg_iterations = 40;     ///< Upper bound on conjugate-gradient iterations per step.
-  double cg_tolerance = 1e-4;     ///< Stop when the residual norm falls below this fraction of the right-hand side's.
+  int max_cg_iterations = 20;     ///< Upper bound on conjugate-gradient iterations per step.
+  double cg_tolerance = 1e-3;     ///< Stop when the residual norm falls below this fraction of the right-hand side's.
 };
 
 /// What one solve did.
