@@ -1,4 +1,4 @@
-// Mesh reading through assimp (every format it knows) and OBJ / binary PLY writing at full double precision.
+// Mesh reading through assimp (every format it knows) and OBJ / ASCII PLY writing at full double precision.
 // Our own writers exist because assimp's exporters go through its float vertex type and would round coordinates.
 #include "clothcd/mesh/mesh_io.hpp"
 
@@ -31,6 +31,18 @@ void check_readable_file(const fs::path& path) {
   if (!fs::exists(status)) throw MeshError(path.string(), "no such file");
   if (fs::is_directory(status)) throw MeshError(path.string(), "is a directory, not a mesh file");
   if (fs::file_size(path, error) == 0) throw MeshError(path.string(), "the file is empty");
+}
+
+/// assimp 5.2's PLY reader loops forever on a header cut short: make sure a PLY header ends before assimp sees it.
+void check_ply_header(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.rfind("ply", 0) != 0) return;
+  if (head.find("\nend_header") == std::string::npos) {
+    throw MeshError(path.string(), "malformed or truncated PLY header (no end_header line)");
+  }
 }
 
 /// Collects the error messages assimp logs. Some readers log a problem and repair it silently (the OFF reader clamps
@@ -72,12 +84,27 @@ class ScopedErrorLog {
   ErrorCollector collector_;
 };
 
+void reject_faces_without_indices(const aiScene& scene, const fs::path& path) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      if (mesh.mFaces[f].mNumIndices == 0) {
+        throw MeshError(path.string(), "malformed or truncated mesh file (face " + std::to_string(f) + " has no vertices)");
+      }
+    }
+  }
+}
+
 const aiScene* import_scene(Assimp::Importer& importer, const fs::path& path, const ScopedErrorLog& log) {
   // Points and lines are not surfaces: drop them, keep triangles (polygons are triangulated).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType |
-                         aiProcess_ValidateDataStructure;
-  const aiScene* scene = importer.ReadFile(path.string(), flags);
+  // Read and validate first, post-process second: assimp's triangulation aborts the process (an assertion, not an
+  // error) on faces without indices, which some readers produce from truncated files.
+  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+  if (scene != nullptr) reject_faces_without_indices(*scene, path);
+  if (scene != nullptr) {
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  }
   if (scene == nullptr) {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "unknown error";
@@ -163,17 +190,18 @@ void save_obj(const TriangleMesh& mesh, std::ofstream& out) {
   }
 }
 
-void save_binary_ply(const TriangleMesh& mesh, std::ofstream& out) {
-  static_assert(sizeof(double) == 8 && sizeof(int) == 4, "PLY layout assumes 8-byte double and 4-byte int");
-  out << "ply\nformat binary_little_endian 1.0\ncomment written by clothcd\n"
+// ASCII, not binary: assimp 5.2's binary PLY reader skips whitespace after "end_header", so a file whose first data
+// byte happens to be 0x0a or 0x20 (sin(pi/16) as a little-endian double starts with 0x0a) is read shifted by a byte.
+void save_ascii_ply(const TriangleMesh& mesh, std::ofstream& out) {
+  out.precision(17);
+  out << "ply\nformat ascii 1.0\ncomment written by clothcd\n"
       << "element vertex " << mesh.vertex_count() << "\nproperty double x\nproperty double y\nproperty double z\n"
       << "element face " << mesh.face_count() << "\nproperty list uchar int vertex_indices\nend_header\n";
-  out.write(reinterpret_cast<const char*>(mesh.vertices.data()),
-            static_cast<std::streamsize>(mesh.vertices.size() * sizeof(double)));
-  const std::uint8_t corner_count = 3;
+  for (Eigen::Index v = 0; v < mesh.vertex_count(); ++v) {
+    out << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2) << '\n';
+  }
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
-    out.write(reinterpret_cast<const char*>(&corner_count), 1);
-    out.write(reinterpret_cast<const char*>(mesh.faces.row(f).data()), 3 * sizeof(int));
+    out << "3 " << mesh.faces(f, 0) << ' ' << mesh.faces(f, 1) << ' ' << mesh.faces(f, 2) << '\n';
   }
 }
 
@@ -181,6 +209,7 @@ void save_binary_ply(const TriangleMesh& mesh, std::ofstream& out) {
 
 TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadReport* report) {
   check_readable_file(path);
+  check_ply_header(path);
   LoadReport local_report;
   const std::lock_guard<std::mutex> lock(import_mutex());
   const ScopedErrorLog log;
@@ -209,7 +238,7 @@ void save_mesh(const TriangleMesh& mesh, const fs::path& path) {
   if (extension == ".obj") {
     save_obj(mesh, out);
   } else {
-    save_binary_ply(mesh, out);
+    save_ascii_ply(mesh, out);
   }
   out.close();
   if (!out) throw MeshError(path.string(), "write failed");

@@ -80,6 +80,7 @@ TEST_CASE("generated meshes survive an OBJ and a PLY round trip", "[mesh][io]") 
   TempDir dir;
   const auto extension = GENERATE(as<std::string>{}, ".obj", ".ply");
   for (const TriangleMesh& mesh : {clothcd::make_paper_cloth('A'), clothcd::make_uv_sphere(2.0, 12, 7),
+                                   clothcd::make_uv_sphere(1.0, 8, 16),  // first coordinate's low byte is 0x0a
                                    clothcd::make_box(Eigen::Vector3d(1, 2, 3)), clothcd::make_fish()}) {
     const auto path = dir / ("mesh" + extension);
     save_mesh(mesh, path);
@@ -174,6 +175,28 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
     require_load_error(write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate");
   }
   SECTION("not a mesh") { require_load_error(write_file(dir / "junk.xyz", "garbage\x01\x02"), "cannot be read"); }
+}
+
+TEST_CASE("files cut at any point load or fail cleanly, never crash", "[mesh][io][errors]") {
+  TempDir dir;
+  const TriangleMesh mesh = clothcd::make_uv_sphere(1.0, 8, 5);
+  for (const std::string extension : {".ply", ".obj"}) {
+    const auto whole = dir / ("whole" + extension);
+    save_mesh(mesh, whole);
+    std::ifstream in(whole, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (int cut = 1; cut < 40; ++cut) {
+      const auto path = write_file(dir / ("cut" + std::to_string(cut) + extension), bytes.substr(0, bytes.size() * cut / 40));
+      INFO(path);
+      try {
+        const TriangleMesh loaded = load_mesh(path);
+        CHECK_NOTHROW(clothcd::validate_mesh(loaded, path.string()));
+        CHECK(loaded.face_count() <= mesh.face_count());
+      } catch (const MeshError& e) {
+        CHECK(std::string(e.what()).find(path.string()) != std::string::npos);
+      }
+    }
+  }
 }
 
 TEST_CASE("saving rejects unknown formats and unwritable paths", "[mesh][io][errors]") {

@@ -1,4 +1,4 @@
-// `clothcd convert IN OUT`: read any mesh format assimp knows, write OBJ or binary PLY.
+// `clothcd convert IN OUT`: read any mesh format assimp knows, write OBJ or ASCII PLY.
 #include <iostream>
 #include <string>
 

@@ -29,8 +29,8 @@ struct LoadReport {
 [[nodiscard]] TriangleMesh load_mesh(const std::filesystem::path& path, const LoadOptions& options = {},
                                      LoadReport* report = nullptr);
 
-/// Writes `mesh` as Wavefront OBJ (".obj") or binary little-endian PLY (".ply"), chosen by extension, with coordinates
-/// at full double precision (OBJ: 17 significant digits). Throws MeshError on an unknown extension or a write failure.
+/// Writes `mesh` as Wavefront OBJ (".obj") or ASCII PLY (".ply"), chosen by extension, with coordinates at full double
+/// precision (17 significant digits). Throws MeshError on an unknown extension or a write failure.
 void save_mesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 
 }  // namespace clothcd
