@@ -13,9 +13,8 @@
 //     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
 //     then tightened to the first sub-piece where D is not certainly non-zero.
 // A piece left undecided at the maximum depth hands the whole query to the exact rational reference, so no collision
-// is ever missed. With thickness h > 0 a piece is cleared only when the distance provably stays above h (boxes beyond
-// h along an axis, or |D| > h |n| with n the face normal / edge cross product, which bounds the distance to the plane
-// or between the lines from below); an undecided leaf is reported as a ConservativeHit at its start time.
+// is ever missed. With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
+// thickness_contact.cpp decides (no rational arithmetic).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -23,6 +22,7 @@
 
 #include "ccd/exact_reference.hpp"
 #include "ccd/interval.hpp"
+#include "ccd/thickness_contact.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
 namespace clothcd::ccd {
@@ -33,7 +33,6 @@ using detail::certain_sign;
 using detail::Interval;
 
 constexpr int kMaxDepth = 16;           // thickness 0: pieces down to 2^-16 of the step before the exact fallback
-constexpr int kMaxThicknessDepth = 10;  // thickness > 0: conservative leaves of 2^-10 of the step
 constexpr int kToiBisections = 24;      // time-of-impact lower bound tightened to about 6e-8 of the step
 // Beyond this magnitude intermediate products could overflow; such queries go straight to the exact reference.
 constexpr double kMaxFastCoordinate = 0x1p100;
@@ -181,7 +180,6 @@ enum class PieceOutcome { Clear, Hit, Undecided };
 
 struct Search {
   const CcdQuery& query;
-  double thickness = 0.0;
   double toi = 1.0;
 };
 
@@ -229,43 +227,6 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
   const PieceOutcome left = search_exact_contact(search, t0, mid, x0, xm, depth + 1);
   if (left != PieceOutcome::Clear) return left;
   return search_exact_contact(search, mid, t1, xm, x1, depth + 1);
-}
-
-// Upper bound of |n| over the piece, n the face normal (vertex-face) or the edge cross product (edge-edge).
-double normal_length_upper_bound(PairKind kind, const Positions& x0, const Positions& x1) {
-  Positions box;
-  for (int i = 0; i < 4; ++i) box[i] = hull(x0[i], x1[i]);
-  const IVec n =
-      kind == PairKind::VertexFace ? cross(box[2] - box[1], box[3] - box[1]) : cross(box[1] - box[0], box[3] - box[2]);
-  return detail::round_up(std::sqrt(detail::round_up(dot(n, n).hi)));
-}
-
-PieceOutcome search_thick_contact(Search& search, double t0, double t1, const Positions& x0, const Positions& x1,
-                                  int depth) {
-  const PairKind kind = search.query.kind;
-  const PointSet w0 = difference_points(kind, x0);
-  const PointSet w1 = difference_points(kind, x1);
-  PointSet boxes;
-  boxes.count = w0.count;
-  for (int m = 0; m < w0.count; ++m) boxes.w[m] = hull(w0.w[m], w1.w[m]);
-  if (boxes_exclude_origin(boxes, search.thickness)) return PieceOutcome::Clear;
-  const std::array<Interval, 4> bernstein = bernstein_of_d(x0, x1);
-  const int sign = common_strict_sign(bernstein);
-  if (sign != 0) {
-    const double limit = detail::round_up(search.thickness * normal_length_upper_bound(kind, x0, x1));
-    bool beyond = true;
-    for (const Interval& b : bernstein) beyond = beyond && (sign > 0 ? b.lo > limit : b.hi < -limit);
-    if (beyond) return PieceOutcome::Clear;
-  }
-  const double mid = 0.5 * (t0 + t1);
-  if (depth >= kMaxThicknessDepth || !(mid > t0 && mid < t1)) {
-    search.toi = t0;
-    return PieceOutcome::Hit;
-  }
-  const Positions xm = positions_at(search.query, mid);
-  const PieceOutcome left = search_thick_contact(search, t0, mid, x0, xm, depth + 1);
-  if (left != PieceOutcome::Clear) return left;
-  return search_thick_contact(search, mid, t1, xm, x1, depth + 1);
 }
 
 exact::RationalPoints rational_points(const CcdQuery& query) {
@@ -344,7 +305,7 @@ CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
 CcdResult contact_without_thickness(const CcdQuery& query) {
   if (nonpenetration_filter_culls(query)) return CcdResult{};
   if (fits_fast_path(query)) {
-    Search search{query, 0.0, 1.0};
+    Search search{query, 1.0};
     const PieceOutcome outcome =
         search_exact_contact(search, 0.0, 1.0, positions_at(query, 0.0), positions_at(query, 1.0), 0);
     if (outcome == PieceOutcome::Clear) return CcdResult{};
@@ -374,17 +335,12 @@ CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& setting
   }
   if (settings.thickness == 0.0) return contact_without_thickness(query);
   if (projection_filter_culls(query, settings)) return CcdResult{};
-  Search search{query, settings.thickness, 1.0};
-  if (!fits_fast_path(query) || search_thick_contact(search, 0.0, 1.0, positions_at(query, 0.0),
-                                                     positions_at(query, 1.0), 0) != PieceOutcome::Clear) {
-    const double toi = fits_fast_path(query) ? search.toi : 0.0;
-    const CcdResult touching = contact_without_thickness(query);
-    CcdResult result =
-        make_hit(query, std::min(toi, touching.toi), touching.hit ? CcdState::Hit : CcdState::ConservativeHit);
-    result.exact_fallback = touching.exact_fallback;
-    return result;
-  }
-  return CcdResult{};
+  if (fits_fast_path(query)) return detail::thick_contact(query, settings.thickness);
+  // Coordinates this large could overflow the double distances: report, and prove what the exact path can.
+  const CcdResult touching = contact_without_thickness(query);
+  CcdResult result = make_hit(query, 0.0, touching.hit ? CcdState::Hit : CcdState::ConservativeHit);
+  result.exact_fallback = touching.exact_fallback;
+  return result;
 }
 
 bool exact_collision_reference(const CcdQuery& query) {

@@ -155,7 +155,7 @@ TEST_CASE("thickness reports pairs that come within it, and only those", "[ccd][
   thick.thickness = 1.0 / 32;
   const ccd::CcdResult within = ccd::continuous_collision(hover, thick);
   CHECK(within.hit);
-  CHECK(within.state == ccd::CcdState::ConservativeHit);  // close, but never touching
+  CHECK(within.state == ccd::CcdState::Hit);  // proven within the thickness, though never touching
   CHECK(within.toi <= 1.0);
   ccd::CcdSettings thin;
   thin.thickness = 1.0 / 256;

@@ -29,15 +29,16 @@ struct CcdQuery {
 /// Settings shared by all queries of a step.
 struct CcdSettings {
   /// Minimum separation (same length unit as the coordinates, >= 0). With thickness > 0 a pair collides when its
-  /// distance gets <= thickness during the step; that test is conservative (it may report pairs that stay slightly
-  /// farther apart).
+  /// distance (point-triangle / segment-segment) gets <= thickness during the step. Decided in double precision by a
+  /// Lipschitz-bounded search of the distance over time; only pairs whose minimum distance lies within a rounding
+  /// margin (about 1e-7 of the pair's extent) of thickness can stay undecided (ConservativeHit).
   double thickness = 0.0;
 };
 
 /// How a CCD answer was established.
 enum class CcdState : std::uint8_t {
   Separated,        ///< Proven not to collide.
-  Hit,              ///< Proven to collide (toi is a lower bound of the earliest contact time).
+  Hit,              ///< Proven to collide / come within the thickness (toi: lower bound of the earliest contact time).
   ConservativeHit,  ///< Could not be proven either way (only with thickness > 0); reported as a hit, toi a lower bound.
 };
 
@@ -47,7 +48,7 @@ struct CcdResult {
   double toi = 1.0;                      ///< Lower bound of the earliest time of impact in [0, 1] (1 when separated).
   CcdState state = CcdState::Separated;  ///< How the answer was established.
   /// VertexFace: barycentric weights (w1, w2) of the contact on the triangle; EdgeEdge: (s on edge a, u on edge b).
-  /// Approximate (evaluated at toi); {0, 0} when unknown.
+  /// Of the closest points at toi (approximate); {0, 0} when unknown.
   std::array<double, 2> parameters{};
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi (zero when unknown or degenerate).
   bool exact_fallback = false;  ///< True when floating point could not decide and exact rational arithmetic did.
@@ -71,7 +72,8 @@ enum class CcdFilter : std::uint8_t {
 /// Throws std::invalid_argument when a coordinate is NaN or infinite or the thickness is negative or not finite.
 void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 
-/// The fast, safe CCD test: never misses a collision; decides uncertain cases with exact rational arithmetic.
+/// The fast, safe CCD test: never misses a collision. Thickness 0: decides uncertain cases with exact rational
+/// arithmetic; thickness > 0: distance search in double precision with a conservative margin (see CcdSettings).
 /// Expects finite coordinates (see validate_query); non-finite input is reported as a ConservativeHit at toi 0.
 [[nodiscard]] CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings = {});
 

@@ -1,0 +1,88 @@
+// Closest points for the thickness test of the CCD (Ericson, "Real-Time Collision Detection", 5.1.2, 5.1.5, 5.1.9).
+//
+// The minimum of a point-triangle or segment-segment distance is attained either in the interior of both primitives
+// (the projection onto the plane, or the common perpendicular of the two lines) or on the boundary, where it is a
+// point-segment distance. Taking the minimum over all these candidates needs no case analysis that degenerates, and
+// point-segment distances (clamped projection) are well conditioned. The interior candidate is only formed when the
+// primitive is far from degenerate (sine above 1e-8), so its error stays a small multiple of the unit roundoff / 1e-8
+// times the pair's extent; the thickness test covers that with its margin.
+#include "ccd/closest_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clothcd::ccd::detail {
+
+namespace {
+
+constexpr double kMinSineSquared = 1e-16;
+
+// Parameter in [0, 1] of the point of segment a b closest to p (0 for a zero-length segment).
+double segment_parameter(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d e = b - a;
+  const double length_squared = e.squaredNorm();
+  if (!(length_squared > 0.0)) return 0.0;
+  return std::clamp(e.dot(p - a) / length_squared, 0.0, 1.0);
+}
+
+void keep_closer(ClosestPoints& best, const Eigen::Vector3d& first, const Eigen::Vector3d& second,
+                 std::array<double, 2> parameters) {
+  const double distance = (first - second).norm();
+  if (distance < best.distance) best = {distance, parameters, first, second};
+}
+
+}  // namespace
+
+ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
+                                     const Eigen::Vector3d& t2) {
+  ClosestPoints best{(p - t0).norm(), {0.0, 0.0}, p, t0};
+  const double s01 = segment_parameter(p, t0, t1);
+  keep_closer(best, p, t0 + s01 * (t1 - t0), {s01, 0.0});
+  const double s02 = segment_parameter(p, t0, t2);
+  keep_closer(best, p, t0 + s02 * (t2 - t0), {0.0, s02});
+  const double s12 = segment_parameter(p, t1, t2);
+  keep_closer(best, p, t1 + s12 * (t2 - t1), {1.0 - s12, s12});
+  const Eigen::Vector3d e1 = t1 - t0;
+  const Eigen::Vector3d e2 = t2 - t0;
+  const Eigen::Vector3d n = e1.cross(e2);
+  const double n2 = n.squaredNorm();
+  if (!(n2 > kMinSineSquared * e1.squaredNorm() * e2.squaredNorm())) return best;
+  const Eigen::Vector3d r = p - t0;
+  // Barycentric weights of the projection from the sub-triangle areas (Cramer's rule with cross products).
+  const double w1 = r.cross(e2).dot(n) / n2;
+  const double w2 = e1.cross(r).dot(n) / n2;
+  if (w1 < 0.0 || w2 < 0.0 || w1 + w2 > 1.0) return best;
+  const Eigen::Vector3d q = t0 + w1 * e1 + w2 * e2;
+  const double plane_distance = std::abs(r.dot(n)) / std::sqrt(n2);
+  if (plane_distance < best.distance) best = {plane_distance, {w1, w2}, p, q};
+  return best;
+}
+
+ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
+                                      const Eigen::Vector3d& b1) {
+  ClosestPoints best{(a0 - b0).norm(), {0.0, 0.0}, a0, b0};
+  const Eigen::Vector3d da = a1 - a0;
+  const Eigen::Vector3d db = b1 - b0;
+  const double u0 = segment_parameter(a0, b0, b1);
+  keep_closer(best, a0, b0 + u0 * db, {0.0, u0});
+  const double u1 = segment_parameter(a1, b0, b1);
+  keep_closer(best, a1, b0 + u1 * db, {1.0, u1});
+  const double s0 = segment_parameter(b0, a0, a1);
+  keep_closer(best, a0 + s0 * da, b0, {s0, 0.0});
+  const double s1 = segment_parameter(b1, a0, a1);
+  keep_closer(best, a0 + s1 * da, b1, {s1, 1.0});
+  const double aa = da.squaredNorm(), bb = db.squaredNorm();
+  const Eigen::Vector3d n = da.cross(db);
+  const double n2 = n.squaredNorm();
+  if (!(n2 > kMinSineSquared * aa * bb)) return best;
+  const Eigen::Vector3d r = b0 - a0;
+  // Common perpendicular of the two lines: s and u from the cross-product form of the 2x2 normal equations.
+  const double s = r.cross(db).dot(n) / n2;
+  const double u = r.cross(da).dot(n) / n2;
+  if (s < 0.0 || s > 1.0 || u < 0.0 || u > 1.0) return best;
+  const double line_distance = std::abs(r.dot(n)) / std::sqrt(n2);
+  if (line_distance < best.distance) best = {line_distance, {s, u}, a0 + s * da, b0 + u * db};
+  return best;
+}
+
+}  // namespace clothcd::ccd::detail

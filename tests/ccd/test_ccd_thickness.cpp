@@ -1,0 +1,185 @@
+// Thickness (minimum separation h > 0) CCD against a slow brute-force reference: the distance of the two primitives
+// sampled on a fine grid of their parameters at many times. A grid distance <= h proves the pair comes within h, so
+// the CCD must report it (zero false negatives); far-apart coplanar (flat cloth) pairs must be decided Separated.
+#include <algorithm>
+#include <limits>
+#include <random>
+
+#include "ccd/ccd_test_support.hpp"
+
+using clothcd::PairKind;
+using clothcd::test::make_query;
+using clothcd::test::Vector3d;
+namespace ccd = clothcd::ccd;
+
+namespace {
+
+constexpr int kGrid = 24;
+constexpr int kTimes = 96;
+
+// Upper bound of the distance at time t: minimum over a kGrid parameter grid of each primitive (points included).
+double grid_distance(const ccd::CcdQuery& query, double t) {
+  std::array<Vector3d, 4> x;
+  for (int i = 0; i < 4; ++i) x[i] = (1 - t) * query.start[i] + t * query.end[i];
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= kGrid; ++i) {
+    for (int j = 0; j <= kGrid; ++j) {
+      const double u = static_cast<double>(i) / kGrid, v = static_cast<double>(j) / kGrid;
+      if (query.kind == PairKind::VertexFace) {
+        if (u + v > 1) continue;
+        best = std::min(best, (x[0] - (x[1] + u * (x[2] - x[1]) + v * (x[3] - x[1]))).norm());
+      } else {
+        best = std::min(best, ((x[0] + u * (x[1] - x[0])) - (x[2] + v * (x[3] - x[2]))).norm());
+      }
+    }
+  }
+  return best;
+}
+
+double reference_min_distance(const ccd::CcdQuery& query) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= kTimes; ++k) best = std::min(best, grid_distance(query, static_cast<double>(k) / kTimes));
+  return best;
+}
+
+class Random {
+ public:
+  explicit Random(unsigned seed) : engine_(seed) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(engine_); }
+  Vector3d vector(double size) { return {uniform(-size, size), uniform(-size, size), uniform(-size, size)}; }
+  int index(int n) { return std::uniform_int_distribution<int>(0, n - 1)(engine_); }
+
+ private:
+  std::mt19937 engine_;
+};
+
+// Random pair of a kind, optionally degenerate: zero-length edge / zero-area triangle, parallel edges, coplanar.
+ccd::CcdQuery random_pair(Random& random, PairKind kind, int variant) {
+  std::array<Vector3d, 4> start, end;
+  for (int i = 0; i < 4; ++i) {
+    start[i] = random.vector(0.1);
+    end[i] = start[i] + random.vector(0.05);
+  }
+  switch (variant) {
+    case 1:  // zero-length edge a / vertex collapses onto t0
+      start[1] = start[kind == PairKind::VertexFace ? 2 : 0];
+      end[1] = end[kind == PairKind::VertexFace ? 2 : 0];
+      break;
+    case 2: {  // zero-area triangle (collinear corners) / parallel edges
+      const int from = kind == PairKind::VertexFace ? 1 : 0;
+      const int to = kind == PairKind::VertexFace ? 2 : 1;
+      start[3] = start[2] + 0.5 * (start[to] - start[from]);
+      end[3] = end[2] + 0.5 * (end[to] - end[from]);
+      break;
+    }
+    case 3:  // everything in the plane z = 0 at both ends (flat cloth)
+      for (int i = 0; i < 4; ++i) start[i].z() = end[i].z() = 0.0;
+      break;
+    default:
+      break;
+  }
+  return make_query(kind, start, end);
+}
+
+}  // namespace
+
+TEST_CASE("thickness: a flat coplanar pair 8 cm apart is separated, not conservative", "[ccd][thickness]") {
+  ccd::CcdSettings settings;
+  settings.thickness = 0.004;
+  const Vector3d down(0, 0, -0.001);
+  const std::array<Vector3d, 4> vf{Vector3d(0.08, 0, 0), Vector3d(0, 0, 0), Vector3d(-0.01, 0.01, 0),
+                                   Vector3d(-0.01, -0.01, 0)};
+  const std::array<Vector3d, 4> ee{Vector3d(0.08, 0, 0), Vector3d(0.09, 0.01, 0), Vector3d(0, 0, 0),
+                                   Vector3d(-0.01, 0.01, 0)};
+  for (const auto& [kind, start] : {std::pair{PairKind::VertexFace, vf}, std::pair{PairKind::EdgeEdge, ee}}) {
+    std::array<Vector3d, 4> end = start;
+    for (Vector3d& p : end) p += down;
+    const ccd::CcdResult result = ccd::continuous_collision(make_query(kind, start, end), settings);
+    CHECK(result.state == ccd::CcdState::Separated);
+    CHECK_FALSE(result.hit);
+    CHECK_FALSE(result.exact_fallback);
+  }
+}
+
+TEST_CASE("thickness: no false reports on random far-apart coplanar pairs", "[ccd][thickness]") {
+  Random random(21u);
+  ccd::CcdSettings settings;
+  settings.thickness = 0.004;
+  int far = 0, reported = 0;
+  for (int i = 0; i < 300; ++i) {
+    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    ccd::CcdQuery query = random_pair(random, kind, 3);
+    const Vector3d drop(0, 0, random.uniform(-0.002, 0.002));
+    for (Vector3d& p : query.end) p = p + drop;
+    const double distance = reference_min_distance(query);
+    if (distance <= settings.thickness) {
+      CHECK(ccd::continuous_collision(query, settings).hit);
+      continue;
+    }
+    // The grid is an upper bound, so demand a clear gap before calling a report false.
+    if (distance < 2 * settings.thickness) continue;
+    ++far;
+    reported += ccd::continuous_collision(query, settings).hit ? 1 : 0;
+  }
+  CHECK(far > 100);
+  CHECK(reported == 0);
+}
+
+TEST_CASE("thickness: zero false negatives against the brute-force reference", "[ccd][thickness][differential]") {
+  Random random(7u);
+  int hits = 0;
+  for (int i = 0; i < 240; ++i) {
+    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    const ccd::CcdQuery query = random_pair(random, kind, (i / 2) % 4);
+    const double distance = reference_min_distance(query);
+    ccd::CcdSettings settings;
+    // Contact exactly at h (the sampled minimum), or a random h around the minimum.
+    settings.thickness = i % 3 == 0 ? distance : random.uniform(0.001, 0.05);
+    if (!(settings.thickness > 0)) continue;
+    const ccd::CcdResult result = ccd::continuous_collision(query, settings);
+    if (distance <= settings.thickness) {
+      INFO("query " << i << " distance " << distance << " thickness " << settings.thickness);
+      CHECK(result.hit);
+      CHECK_FALSE(ccd::projection_filter_culls(query, settings));
+      CHECK_FALSE(ccd::combined_filters_cull(query, settings));
+      ++hits;
+    }
+    if (result.hit) {
+      // toi is a lower bound of the first contact: before it the distance (of which the grid gives an upper bound)
+      // stays above h.
+      for (int k = 0; k * 1.0 / kTimes < result.toi; ++k)
+        CHECK(grid_distance(query, k * 1.0 / kTimes) > settings.thickness * (1 - 1e-9));
+    }
+  }
+  CHECK(hits > 60);
+}
+
+TEST_CASE("thickness: hits carry the closest-point parameters and normal", "[ccd][thickness]") {
+  ccd::CcdSettings settings;
+  settings.thickness = 0.01;
+  const std::array<Vector3d, 4> tri{Vector3d(0.2, 0.3, 1), Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  std::array<Vector3d, 4> tri_end = tri;
+  tri_end[0] = Vector3d(0.2, 0.3, -1);
+  const ccd::CcdResult vf = ccd::continuous_collision(make_query(PairKind::VertexFace, tri, tri_end), settings);
+  REQUIRE(vf.state == ccd::CcdState::Hit);
+  CHECK(vf.toi == Approx(0.495).margin(1e-6));  // distance 1 - 2t reaches 0.01 at t = 0.495
+  CHECK(vf.toi <= 0.495);
+  CHECK(vf.parameters[0] == Approx(0.2).margin(1e-9));
+  CHECK(vf.parameters[1] == Approx(0.3).margin(1e-9));
+  CHECK((vf.normal - Vector3d(0, 0, 1)).norm() < 1e-9);
+
+  // Edge a along y at x = 0.5, z descending; edge b along x.
+  const std::array<Vector3d, 4> edges{Vector3d(0.5, -1, 1), Vector3d(0.5, 1, 1), Vector3d(0, 0, 0), Vector3d(1, 0, 0)};
+  std::array<Vector3d, 4> edges_end = edges;
+  edges_end[0].z() = edges_end[1].z() = 0.5;
+  const ccd::CcdResult far = ccd::continuous_collision(make_query(PairKind::EdgeEdge, edges, edges_end), settings);
+  CHECK(far.state == ccd::CcdState::Separated);
+  edges_end[0].z() = edges_end[1].z() = -1;
+  const ccd::CcdResult ee = ccd::continuous_collision(make_query(PairKind::EdgeEdge, edges, edges_end), settings);
+  REQUIRE(ee.state == ccd::CcdState::Hit);
+  CHECK(ee.toi <= 0.495);
+  CHECK(ee.toi == Approx(0.495).margin(1e-6));
+  CHECK(ee.parameters[0] == Approx(0.5).margin(1e-9));
+  CHECK(ee.parameters[1] == Approx(0.5).margin(1e-9));
+  CHECK((ee.normal - Vector3d(0, 0, 1)).norm() < 1e-9);
+}
