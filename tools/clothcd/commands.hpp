@@ -25,5 +25,7 @@ void add_train_command(CLI::App& app);
 void add_evaluate_command(CLI::App& app);
 /// Adds `clothcd simulate --scene NAME --cloth A|B|C [--steps N] [--dt S] [--culling ...] [--bvh ...] --out DIR`.
 void add_simulate_command(CLI::App& app);
+/// Adds `clothcd gen-dataset --out FILE.csv [--scenes ...] [--cloths ...] [--steps N] [--seeds ...] [--max-rows N]`.
+void add_gen_dataset_command(CLI::App& app);
 
 }  // namespace clothcd::cli

@@ -1,0 +1,225 @@
+// Dataset generation for the pair network (Jin et al., section 3.3.1 (1)): the candidate pairs of simulated steps,
+// labelled by the combined algebraic + projection filters (sections 2.2, 2.3) and by the exact CCD.
+#include "clothcd/learning/dataset_generation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/bvh.hpp"
+#include "clothcd/broadphase/swept_boxes.hpp"
+#include "clothcd/broadphase/traversal.hpp"
+#include "clothcd/simulation/scene.hpp"
+#include "clothcd/simulation/simulator.hpp"
+
+namespace clothcd::learning {
+namespace {
+
+// SplitMix64: the same stream on every platform (std distributions are implementation-defined).
+struct SplitMix64 {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  // Uniform in [0, n) by rejection, so no index is favoured.
+  std::size_t below(std::size_t n) {
+    const std::uint64_t limit = UINT64_MAX - UINT64_MAX % n;
+    std::uint64_t r = next();
+    while (r >= limit) r = next();
+    return static_cast<std::size_t>(r % n);
+  }
+  double unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+};
+
+// The first `keep` entries of a seeded partial Fisher-Yates shuffle of 0..n-1, sorted so rows keep canonical order.
+std::vector<std::size_t> sample_indices(std::size_t n, std::size_t keep, SplitMix64& rng) {
+  std::vector<std::size_t> index(n);
+  for (std::size_t i = 0; i < n; ++i) index[i] = i;
+  if (keep >= n) return index;
+  for (std::size_t i = 0; i < keep; ++i) std::swap(index[i], index[i + rng.below(n - i)]);
+  index.resize(keep);
+  std::sort(index.begin(), index.end());
+  return index;
+}
+
+struct Body {
+  broadphase::BodyTopology topology;
+  broadphase::SweptBoxes boxes;
+  broadphase::Bvh bvh;
+  Vertices start, end;
+};
+
+void refresh(Body& body, double thickness) {
+  broadphase::compute_swept_boxes(body.topology, body.start, body.end, thickness, body.boxes);
+  body.bvh = broadphase::Bvh();
+  body.bvh.build(body.topology, body.boxes, body.start, body.end);
+}
+
+broadphase::BodyView view(const Body& body, int id) { return {id, &body.topology, &body.boxes, &body.bvh}; }
+
+ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::VertexFaceCandidate& c) {
+  ccd::CcdQuery q;
+  q.kind = PairKind::VertexFace;
+  const Body& vb = bodies[static_cast<std::size_t>(c.vertex_body)];
+  const Body& fb = bodies[static_cast<std::size_t>(c.face_body)];
+  q.start[0] = vb.start.row(c.vertex).transpose();
+  q.end[0] = vb.end.row(c.vertex).transpose();
+  for (int k = 0; k < 3; ++k) {
+    const int v = fb.topology.faces(c.face, k);
+    q.start[static_cast<std::size_t>(k + 1)] = fb.start.row(v).transpose();
+    q.end[static_cast<std::size_t>(k + 1)] = fb.end.row(v).transpose();
+  }
+  return q;
+}
+
+ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::EdgeEdgeCandidate& c) {
+  ccd::CcdQuery q;
+  q.kind = PairKind::EdgeEdge;
+  const Body& a = bodies[static_cast<std::size_t>(c.body_a)];
+  const Body& b = bodies[static_cast<std::size_t>(c.body_b)];
+  for (int k = 0; k < 2; ++k) {
+    const int va = a.topology.edges[static_cast<std::size_t>(2 * c.edge_a + k)];
+    const int vb = b.topology.edges[static_cast<std::size_t>(2 * c.edge_b + k)];
+    q.start[static_cast<std::size_t>(k)] = a.start.row(va).transpose();
+    q.end[static_cast<std::size_t>(k)] = a.end.row(va).transpose();
+    q.start[static_cast<std::size_t>(k + 2)] = b.start.row(vb).transpose();
+    q.end[static_cast<std::size_t>(k + 2)] = b.end.row(vb).transpose();
+  }
+  return q;
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument("gen-dataset: " + message);
+}
+
+}  // namespace
+
+void validate_generation_settings(const DatasetGenerationSettings& settings) {
+  require(!settings.scenes.empty(), "no scene given");
+  const std::vector<std::string>& known = simulation::scene_names();
+  for (const std::string& name : settings.scenes) {
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    require(std::find(known.begin(), known.end(), name) != known.end(),
+            "unknown scene '" + name + "' (known: " + list + ")");
+    require(name != "file", "scene 'file' needs a model file; not supported here");
+  }
+  require(!settings.cloths.empty(), "no cloth given");
+  for (char c : settings.cloths)
+    require(c == 'A' || c == 'B' || c == 'C', std::string("unknown cloth '") + c + "' (use A, B or C)");
+  require(!settings.seeds.empty(), "no seed given");
+  require(settings.steps >= 1, "steps must be at least 1 (got " + std::to_string(settings.steps) + ")");
+  require(std::isfinite(settings.dt) && settings.dt >= 0.0, "dt must be finite and >= 0 (0: scene default)");
+  require(settings.max_rows >= 1, "max rows must be at least 1");
+  require(std::isfinite(settings.max_shift) && settings.max_shift >= 0.0, "shift must be finite and >= 0");
+  require(std::isfinite(settings.box_thickness) && settings.box_thickness >= 0.0,
+          "box thickness must be finite and >= 0");
+  require(settings.features.count >= 1 && settings.features.count <= kMaxPairFeatures,
+          "feature count must be in 1.." + std::to_string(kMaxPairFeatures));
+}
+
+GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings, const DatasetProgress& progress) {
+  validate_generation_settings(settings);
+  GeneratedDataset out;
+  out.dataset.feature_names = pair_feature_names(settings.features);
+  const std::size_t runs = settings.scenes.size() * settings.cloths.size() * settings.seeds.size();
+  const std::size_t total_steps = runs * static_cast<std::size_t>(settings.steps);
+  const std::size_t per_step = std::max<std::size_t>(1, (settings.max_rows + total_steps - 1) / total_steps);
+  SplitMix64 sampler{settings.seed};
+  std::vector<double> features(settings.features.count);
+  const ccd::CcdSettings label_settings;  // thickness 0
+  std::size_t done = 0;
+
+  for (const std::string& scene_name : settings.scenes)
+    for (char cloth : settings.cloths)
+      for (unsigned long long seed : settings.seeds) {
+        simulation::SceneSettings scene_settings;
+        scene_settings.name = scene_name;
+        scene_settings.cloth = cloth;
+        scene_settings.model_dir = settings.model_dir;
+        simulation::Scene scene = simulation::make_scene(scene_settings);
+        SplitMix64 shift_rng{seed};
+        const double dx = settings.max_shift * (2.0 * shift_rng.unit() - 1.0);
+        const double dz = settings.max_shift * (2.0 * shift_rng.unit() - 1.0);
+        scene.cloth.vertices.col(0).array() += dx;
+        scene.cloth.vertices.col(2).array() += dz;
+        simulation::SimulationSettings sim_settings;
+        sim_settings.dt = settings.dt > 0.0 ? settings.dt : scene.default_dt;
+        simulation::Simulator simulator(scene, sim_settings);
+        const std::string label = scene_name + "-" + cloth + "-" + std::to_string(seed);
+
+        std::vector<Body> bodies(1 + scene.obstacles.size());
+        bodies[0].topology = broadphase::build_body_topology(scene.cloth.faces,
+                                                             static_cast<int>(scene.cloth.vertices.rows()));
+        for (std::size_t k = 0; k < scene.obstacles.size(); ++k)
+          bodies[k + 1].topology = broadphase::build_body_topology(
+              scene.obstacles[k].rest.faces, static_cast<int>(scene.obstacles[k].rest.vertices.rows()));
+
+        broadphase::CandidateSet candidates;
+        const broadphase::TraversalSettings traversal{false};
+        for (int step = 0; step < settings.steps; ++step) {
+          const int s = simulator.steps_taken();
+          bodies[0].start = simulator.state().positions;
+          bodies[0].end = bodies[0].start + sim_settings.dt * simulator.state().velocities;
+          refresh(bodies[0], settings.box_thickness);
+          for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
+            bodies[k + 1].start = scene.obstacles[k].positions_at(s);
+            bodies[k + 1].end = scene.obstacles[k].positions_at(s + 1);
+            refresh(bodies[k + 1], settings.box_thickness);
+          }
+          candidates.clear();
+          broadphase::find_self_candidates(view(bodies[0], 0), traversal, candidates);
+          for (std::size_t k = 1; k < bodies.size(); ++k)
+            broadphase::find_pair_candidates(view(bodies[0], 0), view(bodies[k], static_cast<int>(k)), traversal,
+                                             candidates);
+          broadphase::sort_candidates(candidates);
+          out.candidates_seen += candidates.size();
+
+          const std::size_t vf = candidates.vertex_face.size();
+          for (std::size_t i : sample_indices(candidates.size(), per_step, sampler)) {
+            const ccd::CcdQuery q = i < vf ? make_query(bodies, candidates.vertex_face[i])
+                                           : make_query(bodies, candidates.edge_edge[i - vf]);
+            compute_pair_features(q, settings.features, features.data());
+            PairRow row;
+            row.features = features.data();
+            row.filter_label = ccd::combined_filters_cull(q, label_settings) ? 0 : 1;
+            row.exact_label = ccd::continuous_collision(q, label_settings).hit ? 1 : 0;
+            row.type = q.kind;
+            row.scene = label;
+            out.dataset.add_row(row);
+            out.queries.push_back(q);
+          }
+          (void)simulator.step();
+          if (progress) progress(++done, total_steps);
+        }
+      }
+
+  if (out.dataset.row_count() > settings.max_rows) {
+    const std::vector<std::size_t> keep = sample_indices(out.dataset.row_count(), settings.max_rows, sampler);
+    GeneratedDataset trimmed;
+    trimmed.dataset.feature_names = out.dataset.feature_names;
+    trimmed.candidates_seen = out.candidates_seen;
+    for (std::size_t i : keep) {
+      PairRow row;
+      row.features = out.dataset.row(i);
+      row.filter_label = out.dataset.filter_label[i];
+      row.exact_label = out.dataset.exact_label[i];
+      row.type = out.dataset.type[i];
+      row.scene = out.dataset.scene[i];
+      trimmed.dataset.add_row(row);
+      trimmed.queries.push_back(out.queries[i]);
+    }
+    out = std::move(trimmed);
+  }
+  SplitSettings split;
+  split.seed = settings.seed;
+  assign_splits(out.dataset, split);
+  return out;
+}
+
+}  // namespace clothcd::learning

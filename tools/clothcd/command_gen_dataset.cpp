@@ -1,0 +1,93 @@
+// `clothcd gen-dataset --out FILE.csv`: labelled candidate pairs from simulated steps (Jin et al., section 3.3.1 (1)),
+// written as the pair data set CSV that `clothcd train` reads (datasets/README.md).
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "clothcd/learning/dataset_generation.hpp"
+#include "clothcd/learning/pair_dataset.hpp"
+#include "commands.hpp"
+
+namespace clothcd::cli {
+namespace {
+
+struct GenDatasetOptions {
+  std::string out;
+  std::vector<std::string> scenes{"box"};
+  std::vector<std::string> cloths{"A"};
+  std::vector<unsigned long long> seeds{1};
+  double rebalance = 0.0;
+  learning::DatasetGenerationSettings settings;
+};
+
+void print_progress(std::size_t done, std::size_t total) {
+  constexpr int kWidth = 30;
+  const int filled = total == 0 ? kWidth : static_cast<int>(kWidth * done / total);
+  std::fprintf(stderr, "\rsimulating [%s%s] %zu/%zu steps", std::string(filled, '#').c_str(),
+               std::string(kWidth - filled, '.').c_str(), done, total);
+  if (done == total) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+double percent(std::size_t part, std::size_t whole) {
+  return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
+}
+
+void run_gen_dataset(GenDatasetOptions options) {
+  learning::DatasetGenerationSettings& settings = options.settings;
+  settings.scenes = options.scenes;
+  settings.cloths.clear();
+  for (const std::string& c : options.cloths) {
+    if (c.size() != 1) throw std::invalid_argument("gen-dataset: unknown cloth '" + c + "' (use A, B or C)");
+    settings.cloths.push_back(c[0]);
+  }
+  settings.seeds = options.seeds;
+  if (options.rebalance < 0.0) throw std::invalid_argument("gen-dataset: --rebalance must be >= 0");
+  learning::GeneratedDataset generated = learning::generate_pair_dataset(settings, print_progress);
+  learning::PairDataset& dataset = generated.dataset;
+  if (options.rebalance > 0.0) dataset = learning::rebalance_training_rows(dataset, options.rebalance, settings.seed);
+  learning::write_pair_dataset_csv(dataset, options.out);
+
+  std::size_t vf = 0;
+  for (PairKind t : dataset.type) vf += t == PairKind::VertexFace ? 1 : 0;
+  const std::size_t rows = dataset.row_count();
+  const learning::ClassBalance balance = learning::class_balance(dataset);
+  std::cout << "candidate pairs seen: " << generated.candidates_seen << "\n"
+            << "rows: " << rows << " (VF " << vf << ", EE " << rows - vf << ")\n";
+  std::cout << std::fixed << std::setprecision(1);
+  for (int s = 0; s < 3; ++s)
+    std::cout << "  " << std::setw(9) << learning::split_name(static_cast<learning::Split>(s)) << ": "
+              << balance.rows[s] << " rows, filter label 1: " << balance.filter_positive[s] << " ("
+              << percent(balance.filter_positive[s], balance.rows[s]) << "%), exact label 1: "
+              << balance.exact_positive[s] << " (" << percent(balance.exact_positive[s], balance.rows[s]) << "%)\n";
+  std::cout << "wrote " << options.out << '\n';
+}
+
+}  // namespace
+
+void add_gen_dataset_command(CLI::App& app) {
+  auto* command = app.add_subcommand("gen-dataset", "Simulate scenes and write labelled candidate pairs as CSV");
+  auto options = std::make_shared<GenDatasetOptions>();
+  learning::DatasetGenerationSettings& s = options->settings;
+  command->add_option("--out", options->out, "Output CSV (datasets/README.md)")->required();
+  command->add_option("--scenes", options->scenes, "Scene names, comma separated")->delimiter(',')->capture_default_str();
+  command->add_option("--cloths", options->cloths, "Cloths A, B, C, comma separated")->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--seeds", options->seeds, "One run per seed (shifts the cloth), comma separated")
+      ->delimiter(',')->capture_default_str();
+  command->add_option("--steps", s.steps, "Steps per run")->capture_default_str();
+  command->add_option("--dt", s.dt, "Step, seconds (0: scene default)")->capture_default_str();
+  command->add_option("--max-rows", s.max_rows, "At most N rows (sampled uniformly, seeded)")->capture_default_str();
+  command->add_option("--rebalance", options->rebalance,
+                      "Keep at most RATIO x the minority filter class of the training rows (0: off)")
+      ->capture_default_str();
+  command->add_option("--features", s.features.count, "Feature count")->capture_default_str();
+  command->add_option("--seed", s.seed, "Seed of the sampling and the 60/20/20 split")->capture_default_str();
+  command->add_option("--model-dir", s.model_dir, "Cache folder of the obstacle models");
+  command->callback([options] { run_gen_dataset(*options); });
+}
+
+}  // namespace clothcd::cli
