@@ -1,6 +1,7 @@
 // The detector of a simulation step (Jin et al., section 3): swept boxes and hierarchy refit (section 3.2), candidate
 // search of cloth vs obstacles and cloth vs itself, culling by the algebraic non-penetration and spatial projection
-// filters (sections 2.2, 2.3), then the exact-safe continuous collision test of every surviving pair.
+// filters (sections 2.2, 2.3) or by the pair network behind the filters (section 3.3), then the exact-safe continuous
+// collision test of every surviving pair.
 #include "clothcd/detection/collision_detector.hpp"
 
 #include <tbb/parallel_for.h>
@@ -15,6 +16,7 @@
 #include "clothcd/broadphase/swept_boxes.hpp"
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/detection/network_culling.hpp"
 
 namespace clothcd {
 namespace {
@@ -54,9 +56,9 @@ ccd::CcdFilter ccd_filter(CullingMode mode) {
     case CullingMode::NonPenetration: return ccd::CcdFilter::NonPenetration;
     case CullingMode::Projection: return ccd::CcdFilter::Projection;
     case CullingMode::Filters: return ccd::CcdFilter::Combined;
-    case CullingMode::Network: break;
+    case CullingMode::Network: return ccd::CcdFilter::Combined;
   }
-  throw std::invalid_argument("network culling not available yet");
+  throw std::invalid_argument("collision detector: unknown culling mode");
 }
 
 void check_positions(const Vertices& positions, Eigen::Index rows, const std::string& what) {
@@ -84,6 +86,7 @@ void for_each_index(std::size_t n, bool parallel, const Function& body) {
 struct CollisionDetector::Impl {
   DetectorSettings settings;
   ccd::CcdFilter filter = ccd::CcdFilter::None;
+  std::unique_ptr<NetworkCuller> network;  // CullingMode::Network only
   Body cloth;
   std::vector<Body> obstacles;
   broadphase::CandidateSet candidates;
@@ -172,10 +175,19 @@ struct CollisionDetector::Impl {
     gather(start, end, refs);
     const ccd::CcdSettings ccd_settings{settings.thickness};
     const std::size_t total = queries.size();
-    keep.resize(total);
-    for_each_index(total, settings.parallel, [&](std::size_t i) {
-      keep[i] = ccd::filter_culls(filter, queries[i], ccd_settings) ? 0 : 1;
-    });
+    if (network) {
+      const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep);
+      stats.network_dropped = n.dropped;
+      stats.network_overruled = n.overruled;
+      stats.network_kept = n.kept;
+      stats.network_ms = n.network_ms;
+      stats.network_filters_ms = n.filters_ms;
+    } else {
+      keep.resize(total);
+      for_each_index(total, settings.parallel, [&](std::size_t i) {
+        keep[i] = ccd::filter_culls(filter, queries[i], ccd_settings) ? 0 : 1;
+      });
+    }
     stats.culling_ms = milliseconds_since(t);
 
     t = Clock::now();
@@ -210,6 +222,7 @@ CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_
   }
   if (settings.max_leaf_faces < 1) throw std::invalid_argument("collision detector: max_leaf_faces must be >= 1");
   impl_->filter = ccd_filter(settings.culling);
+  if (settings.culling == CullingMode::Network) impl_->network = std::make_unique<NetworkCuller>(settings.model_path);
   impl_->settings = settings;
   impl_->cloth.topology = broadphase::build_body_topology(cloth_faces, cloth_vertex_count);
   impl_->cloth.bvh = broadphase::Bvh(bvh_settings(settings, false));

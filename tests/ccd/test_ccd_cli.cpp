@@ -60,7 +60,7 @@ TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cl
   write_file(dir / "ok.csv", vertex_face_query("-1,1", 1));
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "'").exit_code == 1);  // no --type, no kind folder
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type xx").exit_code == 1);
-  CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --filter network").exit_code == 1);
+  CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --filter bogus").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness -1").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "missing").string() + "'").exit_code == 1);
 }

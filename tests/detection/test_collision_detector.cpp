@@ -91,7 +91,8 @@ TriangleMesh falling_cloth() {
 TEST_CASE("detector finds exactly the all-pairs exact CCD collisions", "[detection][brute-force]") {
   const HierarchyKind hierarchy = GENERATE(HierarchyKind::SphereRootAabb, HierarchyKind::Aabb, HierarchyKind::AabbObb);
   const CullingMode culling =
-      GENERATE(CullingMode::None, CullingMode::NonPenetration, CullingMode::Projection, CullingMode::Filters);
+      GENERATE(CullingMode::None, CullingMode::NonPenetration, CullingMode::Projection, CullingMode::Filters,
+               CullingMode::Network);
   const double thickness = GENERATE(0.0, 0.01);
   const TriangleMesh cloth = falling_cloth();
   const TriangleMesh obstacle = make_uv_sphere(0.6, 10, 6);
@@ -178,7 +179,8 @@ TEST_CASE("detector rejects bad input", "[detection][errors]") {
   const int n = static_cast<int>(cloth.vertex_count());
   DetectorSettings network;
   network.culling = CullingMode::Network;
-  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, network), Catch::Contains("network culling not available"));
+  network.model_path = "/nonexistent/model";
+  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, network), Catch::Contains("/nonexistent/model"));
   DetectorSettings negative;
   negative.thickness = -1.0;
   CHECK_THROWS_AS(CollisionDetector(cloth.faces, n, negative), std::invalid_argument);

@@ -1,5 +1,6 @@
 // `clothcd ccd PATH`: runs the safe CCD (optionally behind a filter) on benchmark query files and prints one summary:
 // queries, collisions, false positives/negatives against the ground truth, culled pairs per filter, time per query.
+// `--filter network` puts the pair network in front of the combined filters with the detector's safety rule.
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
+#include "clothcd/detection/network_culling.hpp"
 #include "commands.hpp"
 
 namespace clothcd::cli {
@@ -22,6 +24,7 @@ struct CcdCommandOptions {
   std::string path;
   std::string type;
   std::string filter = "none";
+  std::string model;
   double thickness = 0.0;
   bool json = false;
   std::string per_query;
@@ -41,6 +44,8 @@ struct Summary {
   std::size_t culled_projection = 0;
   std::size_t culled_combined = 0;
   double ns_per_query = 0.0;
+  bool network = false;
+  NetworkCullingStats network_stats;
 };
 
 const char* state_name(ccd::CcdState state) {
@@ -65,7 +70,15 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
               << ", \"inexact_coordinates\": " << s.inexact_coordinates << ", \"culled\": " << s.culled_selected
               << ", \"culled_nonpenetration\": " << s.culled_nonpenetration
               << ", \"culled_projection\": " << s.culled_projection << ", \"culled_combined\": " << s.culled_combined
-              << ", \"ns_per_query\": " << std::fixed << std::setprecision(1) << s.ns_per_query << "}\n";
+              << ", \"ns_per_query\": " << std::fixed << std::setprecision(1) << s.ns_per_query;
+    if (s.network)
+      std::cout << ", \"network_dropped\": " << s.network_stats.dropped
+                << ", \"network_overruled\": " << s.network_stats.overruled
+                << ", \"network_checked\": " << s.network_stats.checked
+                << ", \"network_kept\": " << s.network_stats.kept
+                << ", \"network_ms\": " << s.network_stats.network_ms
+                << ", \"network_filters_ms\": " << s.network_stats.filters_ms;
+    std::cout << "}\n";
     return;
   }
   const auto percent = [&](std::size_t n) { return s.queries ? 100.0 * static_cast<double>(n) / s.queries : 0.0; };
@@ -85,6 +98,14 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
             << "culled projection:     " << s.culled_projection << "  (" << percent(s.culled_projection) << "%)\n"
             << "culled combined:       " << s.culled_combined << "  (" << percent(s.culled_combined) << "%)\n"
             << "ns per query:          " << s.ns_per_query << '\n';
+  if (s.network) {
+    const NetworkCullingStats& n = s.network_stats;
+    std::cout << "network dropped:       " << n.dropped << "  (confirmed by the filters)\n"
+              << "network overruled:     " << n.overruled << "  (drops the filters did not confirm: exact CCD)\n"
+              << "network checked:       " << n.checked << "  (" << n.filter_culled << " culled by the filters)\n"
+              << "network kept:          " << n.kept << "  (straight to the exact CCD)\n"
+              << "network time (ms):     features+inference " << n.network_ms << ", filters " << n.filters_ms << '\n';
+  }
 }
 
 ccd::CcdFilter parse_filter(const std::string& name) {
@@ -94,12 +115,15 @@ ccd::CcdFilter parse_filter(const std::string& name) {
                                                               {"combined", ccd::CcdFilter::Combined}};
   const auto found = kFilters.find(name);
   if (found == kFilters.end())
-    throw std::invalid_argument("unknown --filter '" + name + "' (none, nonpenetration, projection, combined)");
+    throw std::invalid_argument("unknown --filter '" + name +
+                                "' (none, nonpenetration, projection, combined, network)");
   return found->second;
 }
 
 void run_ccd(const CcdCommandOptions& options) {
-  const ccd::CcdFilter filter = parse_filter(options.filter);
+  const bool network = options.filter == "network";
+  const ccd::CcdFilter filter = network ? ccd::CcdFilter::Combined : parse_filter(options.filter);
+  if (!network && !options.model.empty()) throw std::invalid_argument("--model needs --filter network");
   std::optional<PairKind> kind;
   if (options.type == "vf") kind = PairKind::VertexFace;
   if (options.type == "ee") kind = PairKind::EdgeEdge;
@@ -114,12 +138,19 @@ void run_ccd(const CcdCommandOptions& options) {
   queries.reserve(records.size());
   for (const ccd::QueryRecord& record : records) queries.push_back(record.query);
 
+  std::optional<NetworkCuller> culler;
+  if (network) culler.emplace(options.model);
+
   Summary summary;
   summary.queries = queries.size();
+  summary.network = network;
   std::vector<std::uint8_t> keep;
   std::vector<ccd::CcdResult> results;
   const auto begin = std::chrono::steady_clock::now();
-  ccd::filter_batch(queries, filter, settings, keep);
+  if (culler)
+    summary.network_stats = culler->cull(queries, settings, false, keep);
+  else
+    ccd::filter_batch(queries, filter, settings, keep);
   ccd::continuous_collision_batch(queries, keep, settings, results);
   const auto elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count();
   summary.ns_per_query = queries.empty() ? 0.0 : elapsed / static_cast<double>(queries.size());
@@ -163,7 +194,10 @@ void add_ccd_command(CLI::App& app) {
   command->add_option("PATH", options->path, "Query CSV file or folder (searched recursively)")->required();
   command->add_option("--type", options->type,
                       "Pair type: vf or ee (default: from a vertex-face/edge-edge folder in the path)");
-  command->add_option("--filter", options->filter, "none, nonpenetration, projection or combined (default none)");
+  command->add_option("--filter", options->filter,
+                      "none, nonpenetration, projection, combined or network (default none)");
+  command->add_option("--model", options->model,
+                      "Pair network for --filter network: model directory or network.xml (default models/default)");
   command->add_option("--thickness", options->thickness, "Minimum separation (>= 0, default 0)");
   command->add_flag("--json", options->json, "Print the summary as one JSON object");
   command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");

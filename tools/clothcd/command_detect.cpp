@@ -1,11 +1,13 @@
 // `clothcd detect T0_MESH T1_MESH`: continuous collision detection of one step of a deformable mesh against itself
 // (the obstacle may be part of the same mesh); prints counts and stage times, writes every collision as JSON.
+// `--filter network` runs the detector's network culling (the pair network in front of the combined filters).
 #include <array>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -23,6 +25,7 @@ struct DetectOptions {
   double thickness = 0.0;
   std::string bvh = "sphere-root-aabb";
   std::string filter = "combined";
+  std::string model;
   std::string out;
 };
 
@@ -84,6 +87,10 @@ void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& m
       << ", \"vertex_face\": " << vf << ", \"edge_edge\": " << ee << "},\n"
       << "  \"times_ms\": {\"load\": " << load_ms << ", \"refit\": " << s.refit_ms << ", \"traversal\": "
       << s.traversal_ms << ", \"filters\": " << s.culling_ms << ", \"exact\": " << s.exact_ms << "},\n";
+  if (o.filter == "network")
+    out << "  \"network\": {\"dropped\": " << s.network_dropped << ", \"overruled\": " << s.network_overruled
+        << ", \"kept\": " << s.network_kept << ", \"network_ms\": " << s.network_ms
+        << ", \"filters_ms\": " << s.network_filters_ms << "},\n";
   const char* separator = "";
   out << "  \"vertex_face\": [";
   for (const Collision& c : collisions) {
@@ -112,8 +119,11 @@ void run_detect(const DetectOptions& o) {
   static const std::map<std::string, CullingMode> filters = {{"none", CullingMode::None},
                                                              {"nonpenetration", CullingMode::NonPenetration},
                                                              {"projection", CullingMode::Projection},
-                                                             {"combined", CullingMode::Filters}};
+                                                             {"combined", CullingMode::Filters},
+                                                             {"network", CullingMode::Network}};
+  if (o.filter != "network" && !o.model.empty()) throw std::invalid_argument("--model needs --filter network");
   DetectorSettings settings;
+  settings.model_path = o.model;
   settings.hierarchy = hierarchies.at(o.bvh);
   settings.culling = filters.at(o.filter);
   settings.thickness = o.thickness;
@@ -143,6 +153,11 @@ void run_detect(const DetectOptions& o) {
             << std::fixed << std::setprecision(3) << "times (ms):  load " << load_ms << ", build+refit "
             << s.refit_ms << ", traversal " << s.traversal_ms << ", filters " << s.culling_ms << ", exact "
             << s.exact_ms << '\n';
+  if (o.filter == "network") {
+    std::cout << "network:     " << s.network_dropped << " dropped (confirmed by the filters), " << s.network_overruled
+              << " drops overruled, " << s.network_kept << " kept; features+inference " << s.network_ms
+              << " ms, filters " << s.network_filters_ms << " ms\n";
+  }
   if (o.out.empty()) return;
   std::ofstream file(o.out);
   if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
@@ -164,8 +179,10 @@ void add_detect_command(CLI::App& app) {
       ->check(CLI::IsMember({"sphere-root-aabb", "aabb", "aabb-obb"}))
       ->capture_default_str();
   command->add_option("--filter", o->filter, "Culling before the exact test")
-      ->check(CLI::IsMember({"none", "nonpenetration", "projection", "combined"}))
+      ->check(CLI::IsMember({"none", "nonpenetration", "projection", "combined", "network"}))
       ->capture_default_str();
+  command->add_option("--model", o->model,
+                      "Pair network for --filter network: model directory or network.xml (default models/default)");
   command->add_option("--out", o->out, "Write every collision and the stage times as JSON");
   command->callback([o] { run_detect(*o); });
 }

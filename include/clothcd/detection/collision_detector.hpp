@@ -20,7 +20,9 @@ enum class CullingMode {
   NonPenetration,  ///< The algebraic (Bernstein) non-penetration filter.
   Projection,      ///< The spatial linear projection filter.
   Filters,         ///< Both filters, cheaper first.
-  Network,         ///< The learned network (not available yet: the detector throws std::invalid_argument).
+  /// The learned pair network (see detection/network_culling.hpp): Keep goes to the exact CCD, Check and Drop through
+  /// the combined filters; a Drop the filters do not confirm goes to the exact CCD. Culls a subset of Filters.
+  Network,
 };
 
 /// Detector settings; defaults are what a cloth simulation wants.
@@ -29,7 +31,9 @@ struct DetectorSettings {
   CullingMode culling = CullingMode::Filters;               ///< Culling before the exact CCD.
   double thickness = 0.0;       ///< Minimum separation (scene units); pairs closer than this count as colliding.
   bool self_collision = true;   ///< Also test the cloth against itself.
-  std::string model_path;       ///< Network model for CullingMode::Network (empty: the committed default model).
+  /// Network model for CullingMode::Network: a model directory (network.xml + card.json) or its network.xml; empty:
+  /// the committed default model, see default_network_model_dir().
+  std::string model_path;
   int max_leaf_faces = 2;       ///< Triangles per hierarchy leaf (>= 1).
   double rebuild_ratio = 2.0;   ///< Hierarchy rebuild rule, see broadphase::BvhSettings::rebuild_ratio.
   bool parallel = true;         ///< Use TBB threads (results are identical and in the same order either way).
@@ -45,6 +49,11 @@ struct DetectionStats {
   double traversal_ms = 0;          ///< Time to find candidate pairs.
   double culling_ms = 0;            ///< Time in the culling stage.
   double exact_ms = 0;              ///< Time in the exact CCD.
+  long network_dropped = 0;         ///< Network mode: pairs the network dropped and the filters confirmed.
+  long network_overruled = 0;       ///< Network mode: drops the filters did not confirm (sent to the exact CCD).
+  long network_kept = 0;            ///< Network mode: pairs the network sent straight to the exact CCD.
+  double network_ms = 0;            ///< Network mode: features and inference (part of culling_ms).
+  double network_filters_ms = 0;    ///< Network mode: the filters behind the network (part of culling_ms).
   int rebuilds = 0;                 ///< Hierarchies rebuilt (not just refitted) in this step.
 };
 
@@ -52,7 +61,8 @@ struct DetectionStats {
 class CollisionDetector {
  public:
   /// Takes the cloth's triangles (indices into its `cloth_vertex_count` vertices) and the settings.
-  /// Throws std::invalid_argument on out-of-range indices or an empty cloth.
+  /// Throws std::invalid_argument on out-of-range indices or an empty cloth; in Network mode loads the model here and
+  /// throws std::runtime_error naming the file when it is missing or bad.
   CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings = {});
   ~CollisionDetector();
   CollisionDetector(CollisionDetector&&) noexcept;             ///< Movable.

@@ -1,0 +1,108 @@
+// The pair network in the CCD stage (Jin et al., section 3.3.1 and figure 6: the trained network replaces the filters
+// in front of the exact test). Our safety rule keeps the filters behind every pair the network would remove, so the
+// network decides only which pairs may skip the filters; features and inference run in chunks of a few thousand
+// queries, in parallel, each chunk with its own reused structure-of-arrays batch.
+#include "clothcd/detection/network_culling.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <stdexcept>
+
+namespace clothcd {
+namespace {
+
+constexpr std::size_t kChunk = 4096;
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+template <class Function>
+void for_each_chunk(std::size_t chunks, bool parallel, const Function& body) {
+  if (!parallel || chunks < 2) {
+    for (std::size_t c = 0; c < chunks; ++c) body(c);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) body(c);
+  });
+}
+
+}  // namespace
+
+std::string default_network_model_dir() {
+  std::error_code error;
+  const std::string source = CLOTHCD_DEFAULT_MODEL_DIR;
+  const std::string installed = CLOTHCD_INSTALLED_MODEL_DIR;
+  if (std::filesystem::is_directory(source, error)) return source;
+  if (std::filesystem::is_directory(installed, error)) return installed;
+  throw std::runtime_error("no default pair network: neither " + source + " nor " + installed +
+                           " exists (pass a model path)");
+}
+
+NetworkCuller::NetworkCuller(const std::string& model)
+    : classifier_(learning::PairClassifier::load(model.empty() ? default_network_model_dir() : model, features_)) {}
+
+NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& queries, const ccd::CcdSettings& settings,
+                                        bool parallel, std::vector<std::uint8_t>& keep) {
+  using learning::PairDecision;
+  NetworkCullingStats stats;
+  const std::size_t total = queries.size();
+  const std::size_t chunks = (total + kChunk - 1) / kChunk;
+  keep.resize(total);
+  decisions_.resize(total);
+  if (batches_.size() < chunks) batches_.resize(chunks);
+
+  auto t = Clock::now();
+  for_each_chunk(chunks, parallel, [&](std::size_t c) {
+    const std::size_t begin = c * kChunk;
+    const std::size_t n = std::min(kChunk, total - begin);
+    learning::compute_pair_features(queries.data() + begin, n, features_, batches_[c]);
+    classifier_.decide(batches_[c], decisions_.data() + begin);
+  });
+  stats.network_ms = milliseconds_since(t);
+
+  t = Clock::now();
+  std::atomic<long> dropped{0}, overruled{0}, checked{0}, filter_culled{0}, kept{0};
+  for_each_chunk(chunks, parallel, [&](std::size_t c) {
+    const std::size_t begin = c * kChunk;
+    const std::size_t end = std::min(total, begin + kChunk);
+    long n_dropped = 0, n_overruled = 0, n_checked = 0, n_filter_culled = 0, n_kept = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (decisions_[i] == PairDecision::Keep) {
+        keep[i] = 1;
+        ++n_kept;
+        continue;
+      }
+      const bool culled = ccd::combined_filters_cull(queries[i], settings);
+      keep[i] = culled ? 0 : 1;
+      if (decisions_[i] == PairDecision::Drop) {
+        n_dropped += culled ? 1 : 0;
+        n_overruled += culled ? 0 : 1;
+      } else {
+        ++n_checked;
+        n_filter_culled += culled ? 1 : 0;
+      }
+    }
+    dropped += n_dropped;
+    overruled += n_overruled;
+    checked += n_checked;
+    filter_culled += n_filter_culled;
+    kept += n_kept;
+  });
+  stats.filters_ms = milliseconds_since(t);
+  stats.dropped = dropped;
+  stats.overruled = overruled;
+  stats.checked = checked;
+  stats.filter_culled = filter_culled;
+  stats.kept = kept;
+  return stats;
+}
+
+}  // namespace clothcd
