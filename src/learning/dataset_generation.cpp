@@ -165,7 +165,10 @@ GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings
         for (int step = 0; step < settings.steps; ++step) {
           const int s = simulator.steps_taken();
           bodies[0].start = simulator.state().positions;
+          // Free flight under gravity, as the integrator's prediction before any response (springs left out).
+          const Eigen::RowVector3d fall = sim_settings.dt * sim_settings.dt * sim_settings.cloth.gravity.transpose();
           bodies[0].end = bodies[0].start + sim_settings.dt * simulator.state().velocities;
+          bodies[0].end.rowwise() += fall;
           refresh(bodies[0], settings.box_thickness);
           for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
             bodies[k + 1].start = scene.obstacles[k].positions_at(s);

@@ -48,8 +48,8 @@ void validate_generation_settings(const DatasetGenerationSettings& settings);
 
 /// Runs every (scene, cloth, seed) for settings.steps steps. For each step the candidate pairs are enumerated by the
 /// broad phase (cloth self pairs and cloth-obstacle pairs) over the step's unresolved motion: start = the cloth at the
-/// start of the step, end = start + dt * velocity (what the detector sees before the response), obstacles from their
-/// pose at the step to the next. Each step keeps at most an equal share of max_rows pairs, sampled uniformly with a
+/// start of the step, end = start + dt * velocity + dt^2 * gravity (free flight, the detector's view before the
+/// response), obstacles from their pose at the step to the next. Each step keeps at most an equal share of max_rows pairs, sampled uniformly with a
 /// seeded RNG. Labels: filter_label = 0 when ccd::combined_filters_cull removes the pair, exact_label = 1 when
 /// ccd::continuous_collision hits, both with thickness 0 (the coordinates' own contact, as the paper's filters).
 /// Splits are assigned 60/20/20 from settings.seed. Deterministic for equal settings.
