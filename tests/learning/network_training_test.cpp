@@ -8,20 +8,12 @@
 
 #include "clothcd/learning/network_training.hpp"
 #include "learning/trained_model_fixture.hpp"
+#include "support/test_support.hpp"
 
 using namespace clothcd::learning;
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-}  // namespace
+using clothcd::test::read_file;
 
 TEST_CASE("training writes the model, card and neuron curve and learns the filter label", "[learning][training]") {
   const test::TrainedModel& model = test::trained_model();
@@ -55,11 +47,11 @@ TEST_CASE("training drops constant columns and is deterministic for a seed", "[l
   const TrainingReport second = train_pair_network(dataset, settings, b, "a");
   CHECK(first.card.dropped_columns == std::vector<std::string>{"is_edge_edge"});
   CHECK(first.card.inputs.size() == 14);
-  CHECK(read_text(a + "/network.xml") == read_text(b + "/network.xml"));
-  CHECK(read_text(a + "/neurons.csv") == read_text(b + "/neurons.csv"));
+  CHECK(read_file(a + "/network.xml") == read_file(b + "/network.xml"));
+  CHECK(read_file(a + "/neurons.csv") == read_file(b + "/neurons.csv"));
   settings.seed = 99;
   const TrainingReport third = train_pair_network(dataset, settings, b, "a");
-  CHECK(read_text(a + "/network.xml") != read_text(b + "/network.xml"));
+  CHECK(read_file(a + "/network.xml") != read_file(b + "/network.xml"));
   fs::remove_all(a);
   fs::remove_all(b);
 }

@@ -1,7 +1,6 @@
 // Dataset generation: labels recomputed from each row's geometry, determinism, bad settings.
 #include <catch2/catch.hpp>
 
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -10,6 +9,7 @@
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
+#include "support/test_support.hpp"
 
 using namespace clothcd;
 using namespace clothcd::learning;
@@ -74,7 +74,8 @@ TEST_CASE("the same settings give the same CSV, another seed another one", "[lea
   DatasetGenerationSettings settings = tiny_settings();
   settings.steps = 2;
   settings.max_rows = 150;
-  const std::string a = "gen_dataset_test_a.csv", b = "gen_dataset_test_b.csv", c = "gen_dataset_test_c.csv";
+  const test::TempDir dir;
+  const std::string a = (dir / "a.csv").string(), b = (dir / "b.csv").string(), c = (dir / "c.csv").string();
   write_pair_dataset_csv(generate_pair_dataset(settings).dataset, a);
   write_pair_dataset_csv(generate_pair_dataset(settings).dataset, b);
   settings.seed = 99;
@@ -83,9 +84,6 @@ TEST_CASE("the same settings give the same CSV, another seed another one", "[lea
   CHECK(!text_a.empty());
   CHECK(text_a == slurp(b));
   CHECK(text_a != slurp(c));
-  std::remove(a.c_str());
-  std::remove(b.c_str());
-  std::remove(c.c_str());
 }
 
 TEST_CASE("bad generation settings are clear errors", "[learning][gen-dataset]") {
@@ -107,4 +105,24 @@ TEST_CASE("bad generation settings are clear errors", "[learning][gen-dataset]")
   s = tiny_settings();
   s.seeds.clear();
   CHECK_THROWS_AS(generate_pair_dataset(s), std::invalid_argument);
+}
+
+TEST_CASE("clothcd gen-dataset writes a CSV that reads back, and rejects bad arguments", "[learning][gen-dataset][cli]") {
+  const test::TempDir dir;
+  const std::string out = (dir / "pairs.csv").string();
+  const test::CliRun ok = test::run_cli("gen-dataset --out '" + out + "' --scenes box --cloths A --steps 3 --dt 0.02 "
+                                        "--max-rows 120 --seeds 1,2");
+  REQUIRE(ok.exit_code == 0);
+  CHECK_THAT(ok.output, Catch::Contains("rows: 120"));
+  CHECK_THAT(ok.output, Catch::Contains("testing:"));
+  const PairDataset back = read_pair_dataset_csv(out);
+  CHECK(back.row_count() == 120);
+  CHECK(back.feature_count() == FeatureSettings{}.count);
+
+  const test::CliRun unknown = test::run_cli("gen-dataset --out '" + out + "' --scenes nowhere");
+  CHECK(unknown.exit_code != 0);
+  CHECK_THAT(unknown.output, Catch::Contains("unknown scene 'nowhere'"));
+  const test::CliRun zero = test::run_cli("gen-dataset --out '" + out + "' --steps 0");
+  CHECK(zero.exit_code != 0);
+  CHECK_THAT(zero.output, Catch::Contains("steps must be at least 1"));
 }
