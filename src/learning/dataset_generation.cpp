@@ -93,6 +93,53 @@ ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::Edge
   return q;
 }
 
+ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::CandidateSet& candidates, std::size_t i) {
+  const std::size_t vf = candidates.vertex_face.size();
+  return i < vf ? make_query(bodies, candidates.vertex_face[i]) : make_query(bodies, candidates.edge_edge[i - vf]);
+}
+
+// `sampled` (sorted) plus every candidate the exact CCD finds colliding, sorted and without repeats.
+std::vector<std::size_t> add_collisions(std::vector<std::size_t> sampled, const std::vector<Body>& bodies,
+                                        const broadphase::CandidateSet& candidates, const ccd::CcdSettings& settings,
+                                        std::size_t& collisions_seen) {
+  const std::size_t sampled_count = sampled.size();
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const ccd::CcdQuery q = make_query(bodies, candidates, i);
+    if (ccd::combined_filters_cull(q, settings) || !ccd::continuous_collision(q, settings).hit) continue;
+    ++collisions_seen;
+    sampled.push_back(i);
+  }
+  std::inplace_merge(sampled.begin(), sampled.begin() + static_cast<std::ptrdiff_t>(sampled_count), sampled.end());
+  sampled.erase(std::unique(sampled.begin(), sampled.end()), sampled.end());
+  return sampled;
+}
+
+// Trims `out` to `max_rows` rows by a seeded uniform sample; with keep_collisions, colliding rows are always kept.
+void trim_rows(GeneratedDataset& out, std::size_t max_rows, bool keep_collisions, SplitMix64& sampler) {
+  std::vector<std::size_t> forced, others;
+  for (std::size_t i = 0; i < out.dataset.row_count(); ++i)
+    (keep_collisions && out.dataset.exact_label[i] == 1 ? forced : others).push_back(i);
+  const std::size_t room = max_rows > forced.size() ? max_rows - forced.size() : 0;
+  std::vector<std::size_t> keep = forced;
+  for (std::size_t k : sample_indices(others.size(), room, sampler)) keep.push_back(others[k]);
+  std::sort(keep.begin(), keep.end());
+  GeneratedDataset trimmed;
+  trimmed.dataset.feature_names = out.dataset.feature_names;
+  trimmed.candidates_seen = out.candidates_seen;
+  trimmed.collisions_seen = out.collisions_seen;
+  for (std::size_t i : keep) {
+    PairRow row;
+    row.features = out.dataset.row(i);
+    row.filter_label = out.dataset.filter_label[i];
+    row.exact_label = out.dataset.exact_label[i];
+    row.type = out.dataset.type[i];
+    row.scene = out.dataset.scene[i];
+    trimmed.dataset.add_row(row);
+    trimmed.queries.push_back(out.queries[i]);
+  }
+  out = std::move(trimmed);
+}
+
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("gen-dataset: " + message);
 }
@@ -183,10 +230,11 @@ GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings
           broadphase::sort_candidates(candidates);
           out.candidates_seen += candidates.size();
 
-          const std::size_t vf = candidates.vertex_face.size();
-          for (std::size_t i : sample_indices(candidates.size(), per_step, sampler)) {
-            const ccd::CcdQuery q = i < vf ? make_query(bodies, candidates.vertex_face[i])
-                                           : make_query(bodies, candidates.edge_edge[i - vf]);
+          std::vector<std::size_t> chosen = sample_indices(candidates.size(), per_step, sampler);
+          if (settings.keep_collisions)
+            chosen = add_collisions(std::move(chosen), bodies, candidates, label_settings, out.collisions_seen);
+          for (std::size_t i : chosen) {
+            const ccd::CcdQuery q = make_query(bodies, candidates, i);
             compute_pair_features(q, settings.features, features.data());
             PairRow row;
             row.features = features.data();
@@ -202,23 +250,8 @@ GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings
         }
       }
 
-  if (out.dataset.row_count() > settings.max_rows) {
-    const std::vector<std::size_t> keep = sample_indices(out.dataset.row_count(), settings.max_rows, sampler);
-    GeneratedDataset trimmed;
-    trimmed.dataset.feature_names = out.dataset.feature_names;
-    trimmed.candidates_seen = out.candidates_seen;
-    for (std::size_t i : keep) {
-      PairRow row;
-      row.features = out.dataset.row(i);
-      row.filter_label = out.dataset.filter_label[i];
-      row.exact_label = out.dataset.exact_label[i];
-      row.type = out.dataset.type[i];
-      row.scene = out.dataset.scene[i];
-      trimmed.dataset.add_row(row);
-      trimmed.queries.push_back(out.queries[i]);
-    }
-    out = std::move(trimmed);
-  }
+  if (out.dataset.row_count() > settings.max_rows)
+    trim_rows(out, settings.max_rows, settings.keep_collisions, sampler);
   SplitSettings split;
   split.seed = settings.seed;
   assign_splits(out.dataset, split);

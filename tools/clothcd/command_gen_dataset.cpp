@@ -55,8 +55,10 @@ void run_gen_dataset(GenDatasetOptions options) {
   for (PairKind t : dataset.type) vf += t == PairKind::VertexFace ? 1 : 0;
   const std::size_t rows = dataset.row_count();
   const learning::ClassBalance balance = learning::class_balance(dataset);
-  std::cout << "candidate pairs seen: " << generated.candidates_seen << "\n"
-            << "rows: " << rows << " (VF " << vf << ", EE " << rows - vf << ")\n";
+  std::cout << "candidate pairs seen: " << generated.candidates_seen << "\n";
+  if (settings.keep_collisions)
+    std::cout << "colliding candidates seen (all kept): " << generated.collisions_seen << "\n";
+  std::cout << "rows: " << rows << " (VF " << vf << ", EE " << rows - vf << ")\n";
   std::cout << std::fixed << std::setprecision(1);
   for (int s = 0; s < 3; ++s)
     std::cout << "  " << std::setw(9) << learning::split_name(static_cast<learning::Split>(s)) << ": "
@@ -84,6 +86,8 @@ void add_gen_dataset_command(CLI::App& app) {
   command->add_option("--rebalance", options->rebalance,
                       "Keep at most RATIO x the minority filter class of the training rows (0: off)")
       ->capture_default_str();
+  command->add_flag("--keep-collisions", s.keep_collisions,
+                    "Also keep every candidate the exact CCD finds colliding (never trimmed)");
   command->add_option("--features", s.features.count, "Feature count")->capture_default_str();
   command->add_option("--seed", s.seed, "Seed of the sampling and the 60/20/20 split")->capture_default_str();
   command->add_option("--model-dir", s.model_dir, "Cache folder of the obstacle models");

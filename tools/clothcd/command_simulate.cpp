@@ -37,6 +37,7 @@ struct SimulateOptions {
   double friction = ResponseSettings{}.friction;
   std::string model_dir;
   std::string model_file;
+  std::string network_model;
   std::string out;
   bool no_pictures = false;
 };
@@ -165,6 +166,10 @@ void run(const SimulateOptions& options) {
   settings.response.friction = options.friction;
   settings.detector.culling = parse_culling(options.culling);
   settings.detector.hierarchy = parse_hierarchy(options.bvh);
+  if (!options.network_model.empty() && settings.detector.culling != CullingMode::Network) {
+    throw std::invalid_argument("--network-model needs --culling network");
+  }
+  settings.detector.model_path = options.network_model;
   const int steps = options.steps < 0 ? scene.default_steps : options.steps;
   const int frames_every = options.frames_every > 0 ? options.frames_every : std::max(1, steps / 11);
 
@@ -247,6 +252,8 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--model-dir", options->model_dir, "Model cache folder (default $CLOTHCD_MODEL_DIR or "
                                                          ".cache/models)");
   command->add_option("--model", options->model_file, "Obstacle mesh file for --scene file");
+  command->add_option("--network-model", options->network_model,
+                      "Pair network for --culling network: a model directory (default: models/default)");
   command->add_flag("--no-pictures", options->no_pictures, "Skip PNG renders and the contact sheet");
   command->add_option("--out", options->out, "Output folder")->required();
   command->callback([options] { run(*options); });

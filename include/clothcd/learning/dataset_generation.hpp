@@ -28,6 +28,10 @@ struct DatasetGenerationSettings {
   /// are those its detector hands to the narrow phase.
   double box_thickness = 0.004;
   FeatureSettings features;                      ///< Feature count (15 by default).
+  /// Also keep every candidate pair of every step that the exact CCD finds colliding (on top of the uniform sample,
+  /// and never trimmed): real collisions are rare among uniformly sampled candidates, and the operating point is
+  /// chosen on them.
+  bool keep_collisions = false;
   unsigned long long seed = 1;                   ///< Seed of the row sampling and of the 60/20/20 split.
   std::filesystem::path model_dir;               ///< Cache folder of the obstacle models (empty: default).
 };
@@ -40,6 +44,7 @@ struct GeneratedDataset {
   PairDataset dataset;                 ///< Rows with features, labels, type, scene ("<scene>-<cloth>-<seed>"), split.
   std::vector<ccd::CcdQuery> queries;  ///< Per row, the eight positions the features and labels were computed from.
   std::size_t candidates_seen = 0;     ///< Candidate pairs enumerated over all steps (before sampling).
+  std::size_t collisions_seen = 0;     ///< Colliding candidates among them (counted only with keep_collisions).
 };
 
 /// Throws std::invalid_argument naming the problem: no or unknown scene, cloth not A/B/C, no seed, steps < 1,
@@ -49,10 +54,11 @@ void validate_generation_settings(const DatasetGenerationSettings& settings);
 /// Runs every (scene, cloth, seed) for settings.steps steps. For each step the candidate pairs are enumerated by the
 /// broad phase (cloth self pairs and cloth-obstacle pairs) over the step's unresolved motion: start = the cloth at the
 /// start of the step, end = start + dt * velocity + dt^2 * gravity (free flight, the detector's view before the
-/// response), obstacles from their pose at the step to the next. Each step keeps at most an equal share of max_rows pairs, sampled uniformly with a
-/// seeded RNG. Labels: filter_label = 0 when ccd::combined_filters_cull removes the pair, exact_label = 1 when
-/// ccd::continuous_collision hits, both with thickness 0 (the coordinates' own contact, as the paper's filters).
-/// Splits are assigned 60/20/20 from settings.seed. Deterministic for equal settings.
+/// response), obstacles from their pose at the step to the next. Each step keeps at most an equal share of max_rows
+/// pairs, sampled uniformly with a seeded RNG; with keep_collisions, every colliding candidate is kept as well (exempt
+/// from the final trim to max_rows). Labels: filter_label = 0 when ccd::combined_filters_cull removes the pair,
+/// exact_label = 1 when ccd::continuous_collision hits, both with thickness 0 (the coordinates' own contact, as the
+/// paper's filters). Splits are assigned 60/20/20 from settings.seed. Deterministic for equal settings.
 [[nodiscard]] GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings,
                                                      const DatasetProgress& progress = {});
 
