@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # The main job, end to end on a fresh machine: set everything up (scripts/setup.sh), fetch the obstacle models,
-# simplify the rabbit and bound it, train and evaluate a small pair-culling network, and drop a cloth on a box.
+# simplify the rabbit and bound it, generate labelled pairs from simulations, train and evaluate a small pair-culling
+# network on them, and drop a cloth on a box with that network culling the CCD candidates.
 # Everything it makes goes to out/main/: open out/main/box/contact_sheet.png first.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
-clothcd="$root/build/bin/clothcd"
+clothcd="${CLOTHCD_BUILD_DIR:-$root/build}/bin/clothcd"
 models="$root/.cache/models"
 out="$root/out/main"
 rm -rf "$out"
@@ -24,13 +25,17 @@ for method in covariance adaptive adaptive-simplified; do
   "$clothcd" obb "$models/rabbit.off" --method "$method" | tee "$out/obb-$method.txt"
 done
 
-step "pair-culling network: labelled pairs, training with neuron selection, evaluation"
-"$clothcd" train "$out/pairs.csv" --random-pairs 3000 --seed 1 --max-neurons 4 --trials 1 --max-epochs 300 \
+step "pair-culling network: pairs from simulated steps, training with neuron selection, evaluation"
+"$clothcd" gen-dataset --out "$out/pairs.csv" --scenes box,sphere --cloths A --steps 100 --seeds 1,2 \
+  --max-rows 4000 --keep-collisions --seed 1 | tee "$out/gen-dataset.txt"
+"$clothcd" train "$out/pairs.csv" --seed 1 --max-neurons 6 --trials 2 --max-epochs 300 \
   --out "$out/model" | tee "$out/train.txt"
 "$clothcd" evaluate "$out/model" "$out/pairs.csv" --roc "$out/model/roc" | tee "$out/evaluate.txt"
 "$clothcd" evaluate "$root/models/default" "$out/pairs.csv" --roc "$out/default-model-roc" | tee "$out/evaluate-default.txt"
 
-step "cloth A falls on a box (frames, stats.csv, pictures)"
-"$clothcd" simulate --scene box --cloth A --steps 300 --frames-every 30 --out "$out/box" | tee "$out/simulate.txt"
+step "cloth A falls on a box, the trained network culling the CCD candidates (frames, stats.csv, pictures)"
+"$clothcd" simulate --scene box --cloth A --steps 300 --frames-every 30 --culling network --network-model "$out/model" \
+  --out "$out/box" | tee "$out/simulate.txt"
 
-printf '\nmain job done: results in %s (pictures: box/contact_sheet.png, box/renders/)\n' "$out"
+printf '\nmain job done: results in %s (pictures: box/contact_sheet.png, box/renders/;' "$out"
+printf ' network: model/neurons.png, model/roc.png)\n'
