@@ -7,6 +7,7 @@
 
 #include "clothcd/learning/network_training.hpp"
 #include "learning/pair_test_data.hpp"
+#include "support/test_support.hpp"
 
 namespace clothcd::learning::test {
 
@@ -27,13 +28,14 @@ inline TrainingSettings small_training_settings() {
   return settings;
 }
 
-/// Trains the shared model on first use into a temporary directory.
+/// Trains the shared model on first use into a temporary directory of this process (test cases run as parallel
+/// processes, so the directory must not be shared).
 inline const TrainedModel& trained_model() {
+  static const clothcd::test::TempDir folder;
   static const TrainedModel model = [] {
     TrainedModel m;
     m.dataset = make_pair_dataset(1200, 11);
-    m.directory = (std::filesystem::temp_directory_path() / "clothcd_learning_test_model").string();
-    std::filesystem::remove_all(m.directory);
+    m.directory = (folder / "model").string();
     m.report = train_pair_network(m.dataset, small_training_settings(), m.directory, "random pairs (test)");
     return m;
   }();
