@@ -192,7 +192,8 @@ void Bvh::refit(const SweptBoxes& boxes) {
     }
     return;
   }
-  std::vector<FlatBox>& node_boxes = settings_.volume == VolumeKind::Aabb ? boxes_ : scratch_boxes_;
+  // Sphere hierarchies keep their node boxes too: the self-collision search descends on them (see traversal.cpp).
+  std::vector<FlatBox>& node_boxes = boxes_;
   node_boxes.resize(node_count);
   if (settings_.volume == VolumeKind::Sphere) spheres_.resize(node_count);
   for (int i = node_count - 1; i >= 0; --i) {
@@ -204,13 +205,13 @@ void Bvh::refit(const SweptBoxes& boxes) {
       if (settings_.volume == VolumeKind::Sphere) spheres_[i] = box_sphere(b);
       continue;
     }
+    FlatBox b = node_boxes[i + 1];
+    b.expand(node_boxes[node.right]);
+    node_boxes[i] = b;
     if (settings_.volume == VolumeKind::Sphere) {
       spheres_[i] = merge_spheres(spheres_[i + 1], spheres_[node.right]);
       looseness_ += 4.0 * spheres_[i].radius * spheres_[i].radius;
     } else {
-      FlatBox b = node_boxes[i + 1];
-      b.expand(node_boxes[node.right]);
-      node_boxes[i] = b;
       looseness_ += box_area(b);
     }
   }

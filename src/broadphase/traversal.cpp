@@ -271,9 +271,9 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
     leaf_pair_within(body, task.a, task.b, o, s);
   };
   const Task root{0, 0, true, true};
-  if (t.settings().volume == VolumeKind::Sphere) {
-    search(t, t, SphereSphere{&t, &t}, root, leaf_work, settings, out, local);
-  } else if (t.settings().volume == VolumeKind::Aabb) {
+  // Sphere hierarchies descend on their node boxes here: neighbouring cloth regions always touch, and their boxes
+  // overlap far less than their spheres (the root double box only concerns separate bodies).
+  if (t.settings().volume == VolumeKind::Sphere || t.settings().volume == VolumeKind::Aabb) {
     search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, out, local);
   } else {
     throw std::invalid_argument("broad phase: self-collision search needs an AABB or sphere hierarchy");

@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ccd/after_filter.hpp"
 #include "ccd/exact_reference.hpp"
 #include "ccd/interval.hpp"
 #include "ccd/thickness_contact.hpp"
@@ -302,8 +303,8 @@ CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
   return result;
 }
 
-CcdResult contact_without_thickness(const CcdQuery& query) {
-  if (nonpenetration_filter_culls(query)) return CcdResult{};
+CcdResult contact_without_thickness(const CcdQuery& query, bool nonpenetration_checked = false) {
+  if (!nonpenetration_checked && nonpenetration_filter_culls(query)) return CcdResult{};
   if (fits_fast_path(query)) {
     Search search{query, 1.0};
     const PieceOutcome outcome =
@@ -325,7 +326,8 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings) {
     throw std::invalid_argument("CCD thickness must be finite and >= 0, got " + std::to_string(settings.thickness));
 }
 
-CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings) {
+CcdResult detail::continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings,
+                                                    CcdFilter applied) {
   if (!all_finite(query) || !(settings.thickness >= 0.0) || !std::isfinite(settings.thickness)) {
     CcdResult result;
     result.hit = true;
@@ -333,14 +335,20 @@ CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& setting
     result.state = CcdState::ConservativeHit;
     return result;
   }
-  if (settings.thickness == 0.0) return contact_without_thickness(query);
-  if (projection_filter_culls(query, settings)) return CcdResult{};
+  const bool nonpenetration_checked = applied == CcdFilter::NonPenetration || applied == CcdFilter::Combined;
+  const bool projection_checked = applied == CcdFilter::Projection || applied == CcdFilter::Combined;
+  if (settings.thickness == 0.0) return contact_without_thickness(query, nonpenetration_checked);
+  if (!projection_checked && projection_filter_culls(query, settings)) return CcdResult{};
   if (fits_fast_path(query)) return detail::thick_contact(query, settings.thickness);
   // Coordinates this large could overflow the double distances: report, and prove what the exact path can.
   const CcdResult touching = contact_without_thickness(query);
   CcdResult result = make_hit(query, 0.0, touching.hit ? CcdState::Hit : CcdState::ConservativeHit);
   result.exact_fallback = touching.exact_fallback;
   return result;
+}
+
+CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings) {
+  return detail::continuous_collision_after_filter(query, settings, CcdFilter::None);
 }
 
 bool exact_collision_reference(const CcdQuery& query) {

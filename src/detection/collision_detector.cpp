@@ -6,10 +6,12 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <string>
 
+#include "ccd/after_filter.hpp"
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/broadphase/bvh.hpp"
 #include "clothcd/broadphase/candidates.hpp"
@@ -93,6 +95,7 @@ struct CollisionDetector::Impl {
   std::vector<ccd::CcdQuery> queries;
   std::vector<std::uint8_t> keep;
   std::vector<ccd::CcdResult> results;
+  std::vector<std::size_t> hits;  // indices of the results that hit, in canonical order
   std::vector<std::array<VertexRef, 4>> refs;
   std::vector<Collision> collisions;
   DetectionStats stats;
@@ -136,7 +139,7 @@ struct CollisionDetector::Impl {
       const broadphase::BodyView view{static_cast<int>(k) + 1, &o.topology, &o.boxes, &o.bvh};
       broadphase::find_pair_candidates(cloth_view, view, traversal, candidates);
     }
-    broadphase::sort_candidates(candidates);
+    // Candidates stay in search order; only the (far fewer) collisions are put in canonical order (see collect()).
   }
 
   // Fills the CCD queries and, in the same order, the vertex references of each candidate.
@@ -192,14 +195,35 @@ struct CollisionDetector::Impl {
 
     t = Clock::now();
     results.resize(total);
+    // Pairs the filters passed skip the filter tests inside the CCD; the network's Keep pairs met no filter.
+    const ccd::CcdFilter applied = network ? ccd::CcdFilter::None : filter;
     for_each_index(total, settings.parallel, [&](std::size_t i) {
-      results[i] = keep[i] ? ccd::continuous_collision(queries[i], ccd_settings) : ccd::CcdResult{};
+      results[i] = keep[i] ? ccd::detail::continuous_collision_after_filter(queries[i], ccd_settings, applied)
+                           : ccd::CcdResult{};
+    });
+    collect();
+    stats.exact_ms = milliseconds_since(t);
+    long kept = 0;
+    for (std::size_t i = 0; i < total; ++i) kept += keep[i];
+    stats.culled = static_cast<long>(total) - kept;
+    stats.collisions = static_cast<long>(collisions.size());
+  }
+
+  // The hits as collisions in canonical candidate order: vertex-face pairs first, each kind sorted like
+  // broadphase::sort_candidates would sort the candidates.
+  void collect() {
+    const std::size_t vf = candidates.vertex_face.size();
+    hits.clear();
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      if (results[i].hit) hits.push_back(i);
+    }
+    std::sort(hits.begin(), hits.end(), [&](std::size_t a, std::size_t b) {
+      if ((a < vf) != (b < vf)) return a < vf;
+      return a < vf ? candidates.vertex_face[a] < candidates.vertex_face[b]
+                    : candidates.edge_edge[a - vf] < candidates.edge_edge[b - vf];
     });
     collisions.clear();
-    long kept = 0;
-    for (std::size_t i = 0; i < total; ++i) {
-      kept += keep[i];
-      if (!results[i].hit) continue;
+    for (const std::size_t i : hits) {
       Collision c;
       c.kind = queries[i].kind;
       c.vertices = refs[i];
@@ -209,9 +233,6 @@ struct CollisionDetector::Impl {
       c.conservative = results[i].state == ccd::CcdState::ConservativeHit;
       collisions.push_back(c);
     }
-    stats.exact_ms = milliseconds_since(t);
-    stats.culled = static_cast<long>(total) - kept;
-    stats.collisions = static_cast<long>(collisions.size());
   }
 };
 

@@ -85,7 +85,8 @@ class Bvh {
   [[nodiscard]] const std::vector<int>& ordered_faces() const { return ordered_faces_; }
   /// The two vertices of each edge in owned_edges order (2 ints per position).
   [[nodiscard]] const std::vector<int>& ordered_edges() const { return ordered_edges_; }
-  /// Node boxes (VolumeKind::Aabb), one per node.
+  /// Node boxes, one per node: the volumes of VolumeKind::Aabb; sphere hierarchies keep them as well (the
+  /// self-collision search descends on them); empty for VolumeKind::Obb.
   [[nodiscard]] const std::vector<FlatBox>& boxes() const { return boxes_; }
   /// Node spheres (VolumeKind::Sphere), one per node.
   [[nodiscard]] const std::vector<geometry::Sphere>& spheres() const { return spheres_; }
@@ -112,7 +113,6 @@ class Bvh {
   std::vector<FlatBox> boxes_;
   std::vector<geometry::Sphere> spheres_;
   std::vector<geometry::Obb> obbs_;
-  std::vector<FlatBox> scratch_boxes_;
   std::vector<FlatBox> ordered_face_boxes_;
   std::vector<FlatBox> ordered_vertex_boxes_;
   std::vector<FlatBox> ordered_edge_boxes_;

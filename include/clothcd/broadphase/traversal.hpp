@@ -46,7 +46,8 @@ struct TraversalStats {
 [[nodiscard]] FlatBox body_box(const BodyView& body);
 
 /// Appends to `out` every vertex-face pair (v, f) with v not in f and every edge-edge pair sharing no vertex, within
-/// `body`, whose swept boxes overlap. Node volumes: Aabb or Sphere (Obb is searched through its triangle boxes too).
+/// `body`, whose swept boxes overlap. Node volumes: Aabb, or Sphere (descended on its node boxes, Bvh::boxes());
+/// throws std::invalid_argument for Obb.
 /// Order: deterministic, not sorted (see sort_candidates).
 void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
                           TraversalStats* stats = nullptr);
