@@ -83,21 +83,34 @@ Range edge_range(const Bvh& bvh, const BvhNode& node) {
   return {bvh.edge_offset()[node.face_begin], bvh.edge_offset()[node.face_end]};
 }
 
-// Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf).
+// Union of the swept boxes of a leaf's triangles. It bounds every primitive the leaf owns (a vertex or edge box lies
+// inside the box of its owning triangle), so a primitive that misses it misses every primitive of the leaf.
+FlatBox leaf_box(const Bvh& bvh, const BvhNode& leaf) {
+  FlatBox b = empty_flat_box();
+  for (int p = leaf.face_begin; p < leaf.face_end; ++p) b.expand(bvh.ordered_face_boxes()[p]);
+  return b;
+}
+
+// Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
+// primitive is first tested against the other leaf's box.
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, CandidateSet& out,
                        TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
   const BvhNode& la = ta.nodes()[na];
   const BvhNode& lb = tb.nodes()[nb];
-  const Range va = vertex_range(ta, la), vb = vertex_range(tb, lb);
-  const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
-  auto vertices_against_faces = [&out](const BodyView& vertex_body, Range vr, const BodyView& face_body,
-                                       const BvhNode& face_leaf) {
+  const FlatBox box_a = leaf_box(ta, la), box_b = leaf_box(tb, lb);
+  auto vertices_against_faces = [&out, &stats](const BodyView& vertex_body, const BvhNode& vertex_leaf,
+                                               const BodyView& face_body, const BvhNode& face_leaf,
+                                               const FlatBox& face_leaf_box) {
     const Bvh& tv = *vertex_body.bvh;
     const Bvh& tf = *face_body.bvh;
+    const Range vr = vertex_range(tv, vertex_leaf);
     for (int i = vr.begin; i < vr.end; ++i) {
       const FlatBox& box = tv.ordered_vertex_boxes()[i];
+      ++stats.primitive_tests;
+      if (!box.overlaps(face_leaf_box)) continue;
+      stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
       for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
         if (box.overlaps(tf.ordered_face_boxes()[p])) {
           out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
@@ -105,22 +118,24 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, Can
       }
     }
   };
-  vertices_against_faces(a, va, b, lb);
-  vertices_against_faces(b, vb, a, la);
+  vertices_against_faces(a, la, b, lb, box_b);
+  vertices_against_faces(b, lb, a, la, box_a);
+  const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
   for (int i = ea.begin; i < ea.end; ++i) {
     const FlatBox& box = ta.ordered_edge_boxes()[i];
+    ++stats.primitive_tests;
+    if (!box.overlaps(box_b)) continue;
+    stats.primitive_tests += eb.end - eb.begin;
     for (int j = eb.begin; j < eb.end; ++j) {
       if (box.overlaps(tb.ordered_edge_boxes()[j])) {
         out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]});
       }
     }
   }
-  stats.primitive_tests += static_cast<long>(va.end - va.begin) * (lb.face_end - lb.face_begin) +
-                           static_cast<long>(vb.end - vb.begin) * (la.face_end - la.face_begin) +
-                           static_cast<long>(ea.end - ea.begin) * (eb.end - eb.begin);
 }
 
-// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself.
+// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Between two leaves,
+// each primitive is first tested against the other leaf's box.
 void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, TraversalStats& stats) {
   const Bvh& t = *body.bvh;
   const BvhNode& la = t.nodes()[na];
@@ -129,10 +144,14 @@ void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, T
   const int* faces = t.ordered_faces().data();
   const int* edges = t.ordered_edges().data();
   auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf) {
+    const FlatBox face_leaf_box = leaf_box(t, face_leaf);
     const Range vr = vertex_range(t, vertex_leaf);
     for (int i = vr.begin; i < vr.end; ++i) {
       const int v = t.owned_vertices()[i];
       const FlatBox& box = t.ordered_vertex_boxes()[i];
+      ++stats.primitive_tests;
+      if (!same && !box.overlaps(face_leaf_box)) continue;
+      stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
       for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
         const int* f = faces + 3 * p;
         if (f[0] != v && f[1] != v && f[2] != v && box.overlaps(t.ordered_face_boxes()[p])) {
@@ -140,17 +159,20 @@ void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, T
         }
       }
     }
-    stats.primitive_tests += static_cast<long>(vr.end - vr.begin) * (face_leaf.face_end - face_leaf.face_begin);
   };
   vertices_against_faces(la, lb);
   if (!same) vertices_against_faces(lb, la);
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
+  const FlatBox box_b = leaf_box(t, lb);
   for (int i = ea.begin; i < ea.end; ++i) {
     const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
     const FlatBox& box = t.ordered_edge_boxes()[i];
-    for (int j = same ? i + 1 : eb.begin; j < eb.end; ++j) {
+    ++stats.primitive_tests;
+    if (!same && !box.overlaps(box_b)) continue;
+    const int first = same ? i + 1 : eb.begin;
+    stats.primitive_tests += eb.end - first;
+    for (int j = first; j < eb.end; ++j) {
       const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-      ++stats.primitive_tests;
       if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && box.overlaps(t.ordered_edge_boxes()[j])) {
         const int e = t.owned_edges()[i], g = t.owned_edges()[j];
         out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
@@ -161,10 +183,15 @@ void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, T
 
 int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - bvh.nodes()[node].face_begin; }
 
-// One step of the depth-first search: leaf work goes to `on_leaves`, further tasks to `push`.
+// One step of the depth-first search: leaf work goes to `on_leaves`, further tasks to `push`. Child pairs are tested
+// before they are pushed, so only overlapping pairs travel through the stack.
 template <class Overlap, class Push, class OnLeaves>
 void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task, TraversalStats& stats,
           const Push& push, const OnLeaves& on_leaves) {
+  auto push_if_overlapping = [&](int a, int b) {
+    ++stats.volume_tests;
+    if (overlap(a, b)) push(Task{a, b, false, true});
+  };
   const BvhNode& na = ta.nodes()[task.a];
   if (task.self) {
     if (na.is_leaf()) {
@@ -173,7 +200,7 @@ void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task
     }
     push(Task{task.a + 1, task.a + 1, true, true});
     push(Task{na.right, na.right, true, true});
-    push(Task{task.a + 1, na.right, false, false});
+    push_if_overlapping(task.a + 1, na.right);
     return;
   }
   if (!task.tested) {
@@ -184,11 +211,11 @@ void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task
   if (na.is_leaf() && nb.is_leaf()) {
     on_leaves(task);
   } else if (nb.is_leaf() || (!na.is_leaf() && face_count(ta, task.a) >= face_count(tb, task.b))) {
-    push(Task{task.a + 1, task.b, false, false});
-    push(Task{na.right, task.b, false, false});
+    push_if_overlapping(task.a + 1, task.b);
+    push_if_overlapping(na.right, task.b);
   } else {
-    push(Task{task.a, task.b + 1, false, false});
-    push(Task{task.a, nb.right, false, false});
+    push_if_overlapping(task.a, task.b + 1);
+    push_if_overlapping(task.a, nb.right);
   }
 }
 
