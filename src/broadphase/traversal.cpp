@@ -7,7 +7,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace clothcd::broadphase {
@@ -93,18 +95,27 @@ FlatBox leaf_box(const Bvh& bvh, const BvhNode& leaf) {
 
 // Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
 // primitive is first tested against the other leaf's box.
-void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, CandidateSet& out,
-                       TraversalStats& stats) {
+// With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
+void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
+                       CandidateSet& out, TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
   const BvhNode& la = ta.nodes()[na];
   const BvhNode& lb = tb.nodes()[nb];
   const FlatBox box_a = leaf_box(ta, la), box_b = leaf_box(tb, lb);
-  auto vertices_against_faces = [&out, &stats](const BodyView& vertex_body, const BvhNode& vertex_leaf,
-                                               const BodyView& face_body, const BvhNode& face_leaf,
-                                               const FlatBox& face_leaf_box) {
+  // Whether the vertex at owned position i of `vertex_body`, or the face at tree position p of `face_body`, brings a
+  // moved vertex of body a into the pair.
+  auto wanted = [&](bool vertex_in_a, int i, int p) {
+    if (moved == nullptr) return true;
+    if (vertex_in_a) return moved[ta.owned_vertices()[i]] != 0;
+    const int* f = ta.ordered_faces().data() + 3 * p;
+    return moved[f[0]] != 0 || moved[f[1]] != 0 || moved[f[2]] != 0;
+  };
+  auto vertices_against_faces = [&](const BodyView& vertex_body, const BvhNode& vertex_leaf, const BodyView& face_body,
+                                    const BvhNode& face_leaf, const FlatBox& face_leaf_box) {
     const Bvh& tv = *vertex_body.bvh;
     const Bvh& tf = *face_body.bvh;
+    const bool vertex_in_a = &vertex_body == &a;
     const Range vr = vertex_range(tv, vertex_leaf);
     for (int i = vr.begin; i < vr.end; ++i) {
       const FlatBox& box = tv.ordered_vertex_boxes()[i];
@@ -112,7 +123,7 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, Can
       if (!box.overlaps(face_leaf_box)) continue;
       stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
       for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
-        if (box.overlaps(tf.ordered_face_boxes()[p])) {
+        if (box.overlaps(tf.ordered_face_boxes()[p]) && wanted(vertex_in_a, i, p)) {
           out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
         }
       }
@@ -121,9 +132,11 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, Can
   vertices_against_faces(a, la, b, lb, box_b);
   vertices_against_faces(b, lb, a, la, box_a);
   const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
+  const int* edges_a = ta.ordered_edges().data();
   for (int i = ea.begin; i < ea.end; ++i) {
     const FlatBox& box = ta.ordered_edge_boxes()[i];
     ++stats.primitive_tests;
+    if (moved != nullptr && moved[edges_a[2 * i]] == 0 && moved[edges_a[2 * i + 1]] == 0) continue;
     if (!box.overlaps(box_b)) continue;
     stats.primitive_tests += eb.end - eb.begin;
     for (int j = eb.begin; j < eb.end; ++j) {
@@ -135,8 +148,10 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, Can
 }
 
 // Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Between two leaves,
-// each primitive is first tested against the other leaf's box.
-void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, TraversalStats& stats) {
+// each primitive is first tested against the other leaf's box. With `moved` (flags per vertex), only pairs with a
+// moved vertex are produced.
+void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
+                      TraversalStats& stats) {
   const Bvh& t = *body.bvh;
   const BvhNode& la = t.nodes()[na];
   const BvhNode& lb = t.nodes()[nb];
@@ -154,7 +169,8 @@ void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, T
       stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
       for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
         const int* f = faces + 3 * p;
-        if (f[0] != v && f[1] != v && f[2] != v && box.overlaps(t.ordered_face_boxes()[p])) {
+        if (f[0] != v && f[1] != v && f[2] != v && box.overlaps(t.ordered_face_boxes()[p]) &&
+            (moved == nullptr || moved[v] || moved[f[0]] || moved[f[1]] || moved[f[2]])) {
           out.vertex_face.push_back({body.body, v, body.body, t.face_order()[p]});
         }
       }
@@ -173,7 +189,8 @@ void leaf_pair_within(const BodyView& body, int na, int nb, CandidateSet& out, T
     stats.primitive_tests += eb.end - first;
     for (int j = first; j < eb.end; ++j) {
       const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-      if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && box.overlaps(t.ordered_edge_boxes()[j])) {
+      if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && box.overlaps(t.ordered_edge_boxes()[j]) &&
+          (moved == nullptr || moved[a0] || moved[a1] || moved[b0] || moved[b1])) {
         const int e = t.owned_edges()[i], g = t.owned_edges()[j];
         out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
       }
@@ -185,10 +202,15 @@ int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - b
 
 // One step of the depth-first search: leaf work goes to `on_leaves`, further tasks to `push`. Child pairs are tested
 // before they are pushed, so only overlapping pairs travel through the stack.
+// `dirty` (nodes of ta, may be null) restricts the search to node pairs with a dirty node of ta (in a self search, of
+// either node).
 template <class Overlap, class Push, class OnLeaves>
-void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task, TraversalStats& stats,
-          const Push& push, const OnLeaves& on_leaves) {
+void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8_t* dirty, const Task& task,
+          TraversalStats& stats, const Push& push, const OnLeaves& on_leaves) {
+  const bool one_tree = &ta == &tb;
+  auto wanted = [&](int a, int b) { return dirty == nullptr || dirty[a] != 0 || (one_tree && dirty[b] != 0); };
   auto push_if_overlapping = [&](int a, int b) {
+    if (!wanted(a, b)) return;
     ++stats.volume_tests;
     if (overlap(a, b)) push(Task{a, b, false, true});
   };
@@ -198,12 +220,13 @@ void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task
       on_leaves(task);
       return;
     }
-    push(Task{task.a + 1, task.a + 1, true, true});
-    push(Task{na.right, na.right, true, true});
+    if (wanted(task.a + 1, task.a + 1)) push(Task{task.a + 1, task.a + 1, true, true});
+    if (wanted(na.right, na.right)) push(Task{na.right, na.right, true, true});
     push_if_overlapping(task.a + 1, na.right);
     return;
   }
   if (!task.tested) {
+    if (!wanted(task.a, task.b)) return;
     ++stats.volume_tests;
     if (!overlap(task.a, task.b)) return;
   }
@@ -219,9 +242,31 @@ void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& task
   }
 }
 
+// Nodes of `bvh` whose triangles use a moved vertex (flags per vertex): every pair with a moved vertex has a
+// primitive in a dirty leaf (a vertex or edge lies in its owning triangle).
+std::vector<std::uint8_t> dirty_nodes(const Bvh& bvh, const std::vector<std::uint8_t>& moved) {
+  const std::vector<BvhNode>& nodes = bvh.nodes();
+  std::vector<std::uint8_t> dirty(nodes.size(), 0);
+  const int* faces = bvh.ordered_faces().data();
+  for (int i = static_cast<int>(nodes.size()) - 1; i >= 0; --i) {  // children follow their parent
+    const BvhNode& n = nodes[i];
+    if (!n.is_leaf()) {
+      dirty[i] = dirty[i + 1] | dirty[n.right];
+      continue;
+    }
+    for (int p = n.face_begin; p < n.face_end && !dirty[i]; ++p) {
+      dirty[i] = moved[faces[3 * p]] | moved[faces[3 * p + 1]] | moved[faces[3 * p + 2]];
+    }
+  }
+  return dirty;
+}
+
 template <class Overlap, class LeafWork>
 void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& root, const LeafWork& leaf_work,
             const TraversalSettings& settings, CandidateSet& out, TraversalStats& stats) {
+  std::vector<std::uint8_t> dirty_storage;
+  if (settings.moved_vertices != nullptr) dirty_storage = dirty_nodes(ta, *settings.moved_vertices);
+  const std::uint8_t* dirty = settings.moved_vertices != nullptr ? dirty_storage.data() : nullptr;
   // Breadth-first expansion into independent tasks; leaf tasks are kept as tasks.
   std::vector<Task> tasks{root};
   while (settings.parallel && tasks.size() < kTargetTasks) {
@@ -235,7 +280,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
         continue;
       }
       expanded = true;
-      step(ta, tb, overlap, task, stats, [&](const Task& t) { next.push_back(t); }, [](const Task&) {});
+      step(ta, tb, overlap, dirty, task, stats, [&](const Task& t) { next.push_back(t); }, [](const Task&) {});
     }
     tasks.swap(next);
     if (!expanded) break;
@@ -246,7 +291,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
     while (!stack.empty()) {
       const Task task = stack.back();
       stack.pop_back();
-      step(ta, tb, overlap, task, task_stats, [&](const Task& t) { stack.push_back(t); },
+      step(ta, tb, overlap, dirty, task, task_stats, [&](const Task& t) { stack.push_back(t); },
            [&](const Task& t) { leaf_work(t, task_out, task_stats); });
     }
   };
@@ -281,6 +326,15 @@ void check_view(const BodyView& view, bool needs_bvh) {
   }
 }
 
+void check_moved(const BodyView& view, const TraversalSettings& settings) {
+  if (settings.moved_vertices != nullptr &&
+      static_cast<int>(settings.moved_vertices->size()) != view.topology->vertex_count) {
+    throw std::invalid_argument("broad phase: moved_vertices has " + std::to_string(settings.moved_vertices->size()) +
+                                " flags for the " + std::to_string(view.topology->vertex_count) + " vertices of body " +
+                                std::to_string(view.body));
+  }
+}
+
 }  // namespace
 
 FlatBox body_box(const BodyView& body) {
@@ -294,8 +348,10 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
   check_view(body, true);
   TraversalStats local;
   const Bvh& t = *body.bvh;
-  auto leaf_work = [&body](const Task& task, CandidateSet& o, TraversalStats& s) {
-    leaf_pair_within(body, task.a, task.b, o, s);
+  check_moved(body, settings);
+  const std::uint8_t* moved = settings.moved_vertices != nullptr ? settings.moved_vertices->data() : nullptr;
+  auto leaf_work = [&body, moved](const Task& task, CandidateSet& o, TraversalStats& s) {
+    leaf_pair_within(body, task.a, task.b, moved, o, s);
   };
   const Task root{0, 0, true, true};
   // Sphere hierarchies descend on their node boxes here: neighbouring cloth regions always touch, and their boxes
@@ -315,8 +371,10 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
   TraversalStats local;
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
-  auto leaf_work = [&a, &b](const Task& task, CandidateSet& o, TraversalStats& s) {
-    leaf_pair_between(a, b, task.a, task.b, o, s);
+  check_moved(a, settings);
+  const std::uint8_t* moved = settings.moved_vertices != nullptr ? settings.moved_vertices->data() : nullptr;
+  auto leaf_work = [&a, &b, moved](const Task& task, CandidateSet& o, TraversalStats& s) {
+    leaf_pair_between(a, b, task.a, task.b, moved, o, s);
   };
   const VolumeKind ka = ta.settings().volume, kb = tb.settings().volume;
   if (ka == VolumeKind::Sphere && kb == VolumeKind::Sphere) {

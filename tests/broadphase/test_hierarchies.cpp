@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <vector>
 
 #include "broadphase_scenes.hpp"
 #include "clothcd/broadphase/candidates.hpp"
@@ -207,4 +209,65 @@ TEST_CASE("unsupported hierarchy pairs are rejected", "[broadphase]") {
   CandidateSet out;
   CHECK_THROWS_AS(find_pair_candidates(a.view(0), b.view(1), {}, out), std::invalid_argument);
   CHECK_THROWS_AS(find_self_candidates(a.view(0), {}, out), std::invalid_argument);
+}
+
+namespace {
+
+// The pairs of `all` with a moved vertex of body `body` (the reference for searches restricted to moved vertices).
+CandidateSet touching(const CandidateSet& all, int body, const BodyTopology& topology,
+                      const std::vector<std::uint8_t>& moved) {
+  auto face_moved = [&](int f) {
+    return moved[topology.faces(f, 0)] || moved[topology.faces(f, 1)] || moved[topology.faces(f, 2)];
+  };
+  auto edge_moved = [&](int e) { return moved[topology.edges[2 * e]] || moved[topology.edges[2 * e + 1]]; };
+  CandidateSet out;
+  for (const VertexFaceCandidate& c : all.vertex_face) {
+    if ((c.vertex_body == body && moved[c.vertex]) || (c.face_body == body && face_moved(c.face))) {
+      out.vertex_face.push_back(c);
+    }
+  }
+  for (const EdgeEdgeCandidate& c : all.edge_edge) {
+    if ((c.body_a == body && edge_moved(c.edge_a)) || (c.body_b == body && edge_moved(c.edge_b))) {
+      out.edge_edge.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("searches restricted to moved vertices return exactly the brute-force pairs touching them",
+          "[broadphase][brute-force][moved]") {
+  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
+                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const double moved_share = GENERATE(0.0, 0.05, 0.3, 1.0);
+  const bool parallel = GENERATE(false, true);
+  std::mt19937 rng(11);
+  const TriangleMesh cloth = draped_cloth(12);
+  const TriangleMesh obstacle = make_uv_sphere(1.0, 12, 7);
+  TestBody cloth_body(cloth, jitter(cloth.vertices, 0.06, rng), 0.01, {kinds.cloth, 2});
+  TestBody obstacle_body(obstacle, obstacle.vertices, 0.01, {kinds.obstacle, 2});
+  std::bernoulli_distribution pick(moved_share);
+  std::vector<std::uint8_t> moved(cloth_body.topology.vertex_count);
+  for (auto& m : moved) m = pick(rng) ? 1 : 0;
+  TraversalSettings restricted{parallel, &moved};
+
+  CandidateSet all, found;
+  brute_force_self_candidates(cloth_body.view(0), all);
+  find_self_candidates(cloth_body.view(0), restricted, found);
+  const CandidateSet self_reference = touching(all, 0, cloth_body.topology, moved);
+  if (moved_share > 0.0) REQUIRE(self_reference.size() > 0);
+  CHECK_FALSE(has_duplicates(sorted(found)));
+  check_same(sorted(found), sorted(self_reference));
+
+  CandidateSet pair_all, pair_found;
+  brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), pair_all);
+  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), restricted, pair_found);
+  const CandidateSet pair_reference = touching(pair_all, 0, cloth_body.topology, moved);
+  if (moved_share > 0.0) REQUIRE(pair_reference.size() > 0);
+  check_same(sorted(pair_found), sorted(pair_reference));
+
+  std::vector<std::uint8_t> wrong_size(3, 1);
+  CHECK_THROWS_AS(find_self_candidates(cloth_body.view(0), {parallel, &wrong_size}, found), std::invalid_argument);
 }

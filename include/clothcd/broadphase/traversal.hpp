@@ -6,6 +6,9 @@
 /// Section 3.2.1 of Jin et al.: with sphere hierarchies the root spheres are tested first, the root AABBs are built and
 /// tested only when the spheres overlap, and only then does the search descend depth-first.
 
+#include <cstdint>
+#include <vector>
+
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/broadphase/bvh.hpp"
 #include "clothcd/broadphase/candidates.hpp"
@@ -24,6 +27,11 @@ struct BodyView {
 /// Search options.
 struct TraversalSettings {
   bool parallel = true;  ///< Split the search into tasks run by TBB (output order stays deterministic).
+  /// Optional restriction for re-searching after a few vertices moved: flags (non-zero = moved) for the vertices of
+  /// the searched body (find_self_candidates) or of the first body (find_pair_candidates). When set, exactly the
+  /// pairs of the unrestricted search that involve a moved vertex of that body are returned, and subtrees without one
+  /// are skipped. Must stay valid during the call; its size must be that body's vertex count.
+  const std::vector<std::uint8_t>* moved_vertices = nullptr;
 };
 
 /// What one search did.
