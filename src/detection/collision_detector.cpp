@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/network_culling.hpp"
+#include "pair_batch.hpp"
 
 namespace clothcd {
 namespace {
@@ -91,13 +93,16 @@ struct CollisionDetector::Impl {
   std::unique_ptr<NetworkCuller> network;  // CullingMode::Network only
   Body cloth;
   std::vector<Body> obstacles;
-  broadphase::CandidateSet candidates;
-  std::vector<ccd::CcdQuery> queries;
-  std::vector<std::uint8_t> keep;
-  std::vector<ccd::CcdResult> results;
-  std::vector<std::size_t> hits;  // indices of the results that hit, in canonical order
-  std::vector<std::array<VertexRef, 4>> refs;
+  detail::PairBatch batch;   // the pairs of the last call and their narrow-phase work
+  detail::PairBatch spare;   // storage for the next batch when the last one is partly reused
+  broadphase::CandidateSet fresh;  // candidates found by this call's search
+  std::vector<std::size_t> todo;   // positions in `batch` of the pairs this call must test
+  std::vector<std::size_t> hits;   // indices of the results that hit, in canonical order
   std::vector<Collision> collisions;
+  // Reuse within a step (DetectorSettings::reuse_unchanged): the cloth positions of the last completed call.
+  bool has_previous = false;
+  Vertices previous_start, previous_end;
+  std::vector<std::uint8_t> moved;
   DetectionStats stats;
 
   Body& obstacle(int body, const char* caller) {
@@ -117,6 +122,19 @@ struct CollisionDetector::Impl {
     return body == 0 ? cloth.topology : obstacles[body - 1].topology;
   }
 
+  // True when this call repeats the last one's step with few cloth vertices moved (then `moved` flags them): same
+  // start positions, obstacles unchanged since (none stale), reuse enabled and no network. A moving obstacle is stale
+  // again after every call, so its steps are always searched in full.
+  bool can_reuse(const Vertices& start, const Vertices& end) {
+    if (!has_previous || !settings.reuse_unchanged || network) return false;
+    for (const Body& o : obstacles) {
+      if (o.stale) return false;
+    }
+    if (std::memcmp(start.data(), previous_start.data(), sizeof(double) * start.size()) != 0) return false;
+    // Beyond a quarter of the vertices, the restricted search saves little over a full one.
+    return detail::find_moved_rows(previous_end, end, moved) * 4 <= static_cast<std::size_t>(end.rows());
+  }
+
   void refit(const Vertices& start, const Vertices& end) {
     const double thickness = settings.thickness;
     broadphase::compute_swept_boxes(cloth.topology, start, end, thickness, cloth.boxes);
@@ -129,56 +147,71 @@ struct CollisionDetector::Impl {
     }
   }
 
-  void search() {
-    candidates.clear();
-    const broadphase::TraversalSettings traversal{settings.parallel};
+  // Candidate search into `fresh`; with `only_moved`, just the pairs with a moved cloth vertex.
+  void search(bool only_moved) {
+    fresh.clear();
+    const broadphase::TraversalSettings traversal{settings.parallel, only_moved ? &moved : nullptr};
     const broadphase::BodyView cloth_view{0, &cloth.topology, &cloth.boxes, &cloth.bvh};
-    if (settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, candidates);
+    if (settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, fresh);
     for (std::size_t k = 0; k < obstacles.size(); ++k) {
       const Body& o = obstacles[k];
       const broadphase::BodyView view{static_cast<int>(k) + 1, &o.topology, &o.boxes, &o.bvh};
-      broadphase::find_pair_candidates(cloth_view, view, traversal, candidates);
+      broadphase::find_pair_candidates(cloth_view, view, traversal, fresh);
     }
     // Candidates stay in search order; only the (far fewer) collisions are put in canonical order (see collect()).
   }
 
-  // Fills the CCD queries and, in the same order, the vertex references of each candidate.
-  void gather(const Vertices& start, const Vertices& end, std::vector<std::array<VertexRef, 4>>& refs) {
-    const std::size_t vf = candidates.vertex_face.size();
-    const std::size_t total = vf + candidates.edge_edge.size();
-    queries.resize(total);
-    refs.resize(total);
-    for_each_index(total, settings.parallel, [&](std::size_t i) {
-      std::array<VertexRef, 4>& r = refs[i];
-      ccd::CcdQuery& q = queries[i];
-      if (i < vf) {
-        const auto& c = candidates.vertex_face[i];
-        const auto& faces = topology_of(c.face_body).faces;
-        r = {VertexRef{c.vertex_body, c.vertex}, VertexRef{c.face_body, faces(c.face, 0)},
-             VertexRef{c.face_body, faces(c.face, 1)}, VertexRef{c.face_body, faces(c.face, 2)}};
-        q.kind = PairKind::VertexFace;
-      } else {
-        const auto& c = candidates.edge_edge[i - vf];
-        const auto& ea = topology_of(c.body_a).edges;
-        const auto& eb = topology_of(c.body_b).edges;
-        r = {VertexRef{c.body_a, ea[2 * c.edge_a]}, VertexRef{c.body_a, ea[2 * c.edge_a + 1]},
-             VertexRef{c.body_b, eb[2 * c.edge_b]}, VertexRef{c.body_b, eb[2 * c.edge_b + 1]}};
-        q.kind = PairKind::EdgeEdge;
-      }
-      for (int k = 0; k < 4; ++k) {
-        q.start[k] = start_of(r[k].body, start).row(r[k].vertex).transpose();
-        q.end[k] = end_of(r[k].body, end).row(r[k].vertex).transpose();
-      }
-    });
+  // Makes `batch` this call's pairs and `todo` the positions still to test: with `only_moved`, the unmoved pairs of
+  // the last call (work kept) followed by the fresh ones; otherwise just the fresh ones.
+  void assemble(bool only_moved) {
+    todo.clear();
+    if (only_moved) {
+      todo = detail::merge_unmoved(batch, moved, fresh, spare);
+      std::swap(batch, spare);
+      return;
+    }
+    std::swap(batch.candidates, fresh);
+    batch.resize_to_candidates();
+    for (std::size_t i = 0; i < batch.size(); ++i) todo.push_back(i);
   }
 
+  // Fills the CCD query and the vertex references of the pair at position i of the batch.
+  void gather(const Vertices& start, const Vertices& end, std::size_t i) {
+    const broadphase::CandidateSet& candidates = batch.candidates;
+    const std::size_t vf = candidates.vertex_face.size();
+    std::array<VertexRef, 4>& r = batch.refs[i];
+    ccd::CcdQuery& q = batch.queries[i];
+    if (i < vf) {
+      const auto& c = candidates.vertex_face[i];
+      const auto& faces = topology_of(c.face_body).faces;
+      r = {VertexRef{c.vertex_body, c.vertex}, VertexRef{c.face_body, faces(c.face, 0)},
+           VertexRef{c.face_body, faces(c.face, 1)}, VertexRef{c.face_body, faces(c.face, 2)}};
+      q.kind = PairKind::VertexFace;
+    } else {
+      const auto& c = candidates.edge_edge[i - vf];
+      const auto& ea = topology_of(c.body_a).edges;
+      const auto& eb = topology_of(c.body_b).edges;
+      r = {VertexRef{c.body_a, ea[2 * c.edge_a]}, VertexRef{c.body_a, ea[2 * c.edge_a + 1]},
+           VertexRef{c.body_b, eb[2 * c.edge_b]}, VertexRef{c.body_b, eb[2 * c.edge_b + 1]}};
+      q.kind = PairKind::EdgeEdge;
+    }
+    for (int k = 0; k < 4; ++k) {
+      q.start[k] = start_of(r[k].body, start).row(r[k].vertex).transpose();
+      q.end[k] = end_of(r[k].body, end).row(r[k].vertex).transpose();
+    }
+  }
+
+  // Queries, culling and CCD for the pairs at the `todo` positions of the batch (the network mode always tests all).
   void narrow_phase(const Vertices& start, const Vertices& end) {
     // Gathering the pairs' positions counts as culling time: it is the batch the filters read.
     auto t = Clock::now();
-    gather(start, end, refs);
     const ccd::CcdSettings ccd_settings{settings.thickness};
-    const std::size_t total = queries.size();
+    const std::size_t total = batch.size();
+    std::vector<ccd::CcdQuery>& queries = batch.queries;
+    std::vector<std::uint8_t>& keep = batch.keep;
+    std::vector<ccd::CcdResult>& results = batch.results;
     if (network) {
+      for_each_index(total, settings.parallel, [&](std::size_t i) { gather(start, end, i); });
       const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep);
       stats.network_dropped = n.dropped;
       stats.network_overruled = n.overruled;
@@ -186,21 +219,23 @@ struct CollisionDetector::Impl {
       stats.network_ms = n.network_ms;
       stats.network_filters_ms = n.filters_ms;
     } else {
-      keep.resize(total);
-      for_each_index(total, settings.parallel, [&](std::size_t i) {
+      for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
+        const std::size_t i = todo[j];
+        gather(start, end, i);
         keep[i] = ccd::filter_culls(filter, queries[i], ccd_settings) ? 0 : 1;
       });
     }
     stats.culling_ms = milliseconds_since(t);
 
     t = Clock::now();
-    results.resize(total);
     // Pairs the filters passed skip the filter tests inside the CCD; the network's Keep pairs met no filter.
     const ccd::CcdFilter applied = network ? ccd::CcdFilter::None : filter;
-    for_each_index(total, settings.parallel, [&](std::size_t i) {
+    for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
+      const std::size_t i = todo[j];
       results[i] = keep[i] ? ccd::detail::continuous_collision_after_filter(queries[i], ccd_settings, applied)
                            : ccd::CcdResult{};
     });
+    stats.reused = static_cast<long>(total - todo.size());
     collect();
     stats.exact_ms = milliseconds_since(t);
     long kept = 0;
@@ -212,6 +247,8 @@ struct CollisionDetector::Impl {
   // The hits as collisions in canonical candidate order: vertex-face pairs first, each kind sorted like
   // broadphase::sort_candidates would sort the candidates.
   void collect() {
+    const broadphase::CandidateSet& candidates = batch.candidates;
+    const std::vector<ccd::CcdResult>& results = batch.results;
     const std::size_t vf = candidates.vertex_face.size();
     hits.clear();
     for (std::size_t i = 0; i < results.size(); ++i) {
@@ -225,8 +262,8 @@ struct CollisionDetector::Impl {
     collisions.clear();
     for (const std::size_t i : hits) {
       Collision c;
-      c.kind = queries[i].kind;
-      c.vertices = refs[i];
+      c.kind = batch.queries[i].kind;
+      c.vertices = batch.refs[i];
       c.toi = results[i].toi;
       c.parameters = results[i].parameters;
       c.normal = results[i].normal;
@@ -298,18 +335,26 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
   check_positions(start, d.cloth.topology.vertex_count, "detect: cloth start positions");
   check_positions(end, d.cloth.topology.vertex_count, "detect: cloth end positions");
   d.stats = DetectionStats{};
+  const bool reuse = d.can_reuse(start, end);
+  d.has_previous = false;  // until this call completes
 
   auto t = Clock::now();
   d.refit(start, end);
   d.stats.refit_ms = milliseconds_since(t);
 
   t = Clock::now();
-  d.search();
+  d.search(reuse);
+  d.assemble(reuse);
   d.stats.traversal_ms = milliseconds_since(t);
-  d.stats.candidates_vertex_face = static_cast<long>(d.candidates.vertex_face.size());
-  d.stats.candidates_edge_edge = static_cast<long>(d.candidates.edge_edge.size());
+  d.stats.candidates_vertex_face = static_cast<long>(d.batch.candidates.vertex_face.size());
+  d.stats.candidates_edge_edge = static_cast<long>(d.batch.candidates.edge_edge.size());
 
   d.narrow_phase(start, end);
+  if (d.settings.reuse_unchanged && !d.network) {
+    d.previous_start = start;
+    d.previous_end = end;
+    d.has_previous = true;
+  }
 
   // A moved obstacle rests at its end positions from the next step on, unless it is moved again.
   for (Body& o : d.obstacles) {

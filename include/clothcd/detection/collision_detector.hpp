@@ -37,6 +37,10 @@ struct DetectorSettings {
   int max_leaf_faces = 2;       ///< Triangles per hierarchy leaf (>= 1).
   double rebuild_ratio = 2.0;   ///< Hierarchy rebuild rule, see broadphase::BvhSettings::rebuild_ratio.
   bool parallel = true;         ///< Use TBB threads (results are identical and in the same order either way).
+  /// When detect() is called again with the same start positions (a simulation re-checking its step after collision
+  /// response) and unchanged obstacles, search and test again only the pairs with a cloth vertex whose end position
+  /// changed, and keep the previous answer for the others (it cannot differ). Not used with CullingMode::Network.
+  bool reuse_unchanged = true;
 };
 
 /// Counts and times of the last detect() call.
@@ -55,6 +59,7 @@ struct DetectionStats {
   double network_ms = 0;            ///< Network mode: features and inference (part of culling_ms).
   double network_filters_ms = 0;    ///< Network mode: the filters behind the network (part of culling_ms).
   int rebuilds = 0;                 ///< Hierarchies rebuilt (not just refitted) in this step.
+  long reused = 0;                  ///< Pairs whose culling and CCD answer was kept from the previous call.
 };
 
 /// Continuous collision detection between a cloth and obstacles, step after step.
