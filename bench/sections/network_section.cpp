@@ -129,7 +129,8 @@ SectionReport run_network(const BenchContext& context) {
         std::to_string(card.hidden_neurons) + " hidden neurons chosen from 1.." + std::to_string(card.max_neurons) +
         ", " + std::to_string(card.trials) + " trials each), evaluated on " + source + " (" +
         std::to_string(eval.rows) + " rows). Positive = the combined filters keep the pair (the paper's label), " +
-        "predicted positive = probability >= " + number(eval.decision_threshold, 3) + ".\n\n";
+        "predicted positive = probability >= " + number(eval.decision_threshold, 3) +
+        ". The counts scale with the split's size: compare accuracy and AUC.\n\n";
   md += markdown_table({"", "paper", "clothcd", "ratio"}, rows);
   md += "\nFigure 12: `network_neurons.png`, normalized squared error per hidden-neuron count (" +
         legend({"training", "selection"}) + "); Figure 13: `network_roc.png` (ROC on the testing split).\n\n";
