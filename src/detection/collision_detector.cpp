@@ -262,7 +262,7 @@ struct CollisionDetector::Impl {
     collisions.clear();
     for (const std::size_t i : hits) {
       Collision c;
-      c.kind = batch.queries[i].kind;
+      c.kind = i < vf ? PairKind::VertexFace : PairKind::EdgeEdge;
       c.vertices = batch.refs[i];
       c.toi = results[i].toi;
       c.parameters = results[i].parameters;

@@ -54,7 +54,6 @@ std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vec
   const std::size_t next_vf = next.candidates.vertex_face.size();
   std::vector<std::size_t> todo;
   auto copy = [&](std::size_t to, std::size_t i) {
-    next.queries[to] = previous.queries[i];
     next.refs[to] = previous.refs[i];
     next.keep[to] = previous.keep[i];
     next.results[to] = previous.results[i];

@@ -18,11 +18,11 @@ namespace clothcd::detail {
 /// Candidates and, per pair (vertex-face pairs first, then edge-edge pairs), its CCD query, vertex references, filter
 /// verdict (keep) and CCD result.
 struct PairBatch {
-  broadphase::CandidateSet candidates;          ///< The pairs.
-  std::vector<ccd::CcdQuery> queries;           ///< Positions of each pair.
-  std::vector<std::array<VertexRef, 4>> refs;   ///< Vertices of each pair.
-  std::vector<std::uint8_t> keep;               ///< 1 when the pair survived culling.
-  std::vector<ccd::CcdResult> results;          ///< CCD result (Separated when culled).
+  broadphase::CandidateSet candidates;         ///< The pairs.
+  std::vector<ccd::CcdQuery> queries;          ///< Positions of the pairs tested by the last call (not of reused ones).
+  std::vector<std::array<VertexRef, 4>> refs;  ///< Vertices of each pair.
+  std::vector<std::uint8_t> keep;              ///< 1 when the pair survived culling.
+  std::vector<ccd::CcdResult> results;         ///< CCD result (Separated when culled).
 
   /// Number of pairs.
   [[nodiscard]] std::size_t size() const { return candidates.size(); }
@@ -35,8 +35,8 @@ struct PairBatch {
 std::size_t find_moved_rows(const Vertices& before, const Vertices& now, std::vector<std::uint8_t>& moved);
 
 /// Fills `next` with the pairs of `previous` that have no moved cloth vertex (body 0, flags `moved`), their work
-/// copied, followed kind by kind by the `fresh` pairs; returns the positions in `next` of the fresh pairs, whose
-/// queries, verdicts and results are still to be computed.
+/// copied (all but the queries), followed kind by kind by the `fresh` pairs; returns the positions in `next` of the
+/// fresh pairs, whose queries, verdicts and results are still to be computed.
 std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vector<std::uint8_t>& moved,
                                        const broadphase::CandidateSet& fresh, PairBatch& next);
 
