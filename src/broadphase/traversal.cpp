@@ -86,8 +86,11 @@ Range edge_range(const Bvh& bvh, const BvhNode& node) {
 }
 
 // Union of the swept boxes of a leaf's triangles. It bounds every primitive the leaf owns (a vertex or edge box lies
-// inside the box of its owning triangle), so a primitive that misses it misses every primitive of the leaf.
-FlatBox leaf_box(const Bvh& bvh, const BvhNode& leaf) {
+// inside the box of its owning triangle), so a primitive that misses it misses every primitive of the leaf. AABB and
+// sphere hierarchies store it as the node box.
+FlatBox leaf_box(const Bvh& bvh, int node) {
+  if (!bvh.boxes().empty()) return bvh.boxes()[node];
+  const BvhNode& leaf = bvh.nodes()[node];
   FlatBox b = empty_flat_box();
   for (int p = leaf.face_begin; p < leaf.face_end; ++p) b.expand(bvh.ordered_face_boxes()[p]);
   return b;
@@ -102,7 +105,7 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
   const Bvh& tb = *b.bvh;
   const BvhNode& la = ta.nodes()[na];
   const BvhNode& lb = tb.nodes()[nb];
-  const FlatBox box_a = leaf_box(ta, la), box_b = leaf_box(tb, lb);
+  const FlatBox box_a = leaf_box(ta, na), box_b = leaf_box(tb, nb);
   // Whether the vertex at owned position i of `vertex_body`, or the face at tree position p of `face_body`, brings a
   // moved vertex of body a into the pair.
   auto wanted = [&](bool vertex_in_a, int i, int p) {
@@ -158,8 +161,8 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   const bool same = na == nb;
   const int* faces = t.ordered_faces().data();
   const int* edges = t.ordered_edges().data();
-  auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf) {
-    const FlatBox face_leaf_box = leaf_box(t, face_leaf);
+  auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf,
+                                    const FlatBox& face_leaf_box) {
     const Range vr = vertex_range(t, vertex_leaf);
     for (int i = vr.begin; i < vr.end; ++i) {
       const int v = t.owned_vertices()[i];
@@ -176,10 +179,10 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
       }
     }
   };
-  vertices_against_faces(la, lb);
-  if (!same) vertices_against_faces(lb, la);
+  const FlatBox box_a = leaf_box(t, na), box_b = leaf_box(t, nb);
+  vertices_against_faces(la, lb, box_b);
+  if (!same) vertices_against_faces(lb, la, box_a);
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
-  const FlatBox box_b = leaf_box(t, lb);
   for (int i = ea.begin; i < ea.end; ++i) {
     const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
     const FlatBox& box = t.ordered_edge_boxes()[i];
