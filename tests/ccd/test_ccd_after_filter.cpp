@@ -22,7 +22,7 @@ std::vector<ccd::CcdQuery> test_queries(std::mt19937& rng) {
     return scale * p;
   };
   std::vector<ccd::CcdQuery> queries;
-  for (int i = 0; i < 400; ++i) {
+  for (int i = 0; i < 240; ++i) {
     const PairKind kind = i % 2 == 0 ? PairKind::VertexFace : PairKind::EdgeEdge;
     std::array<Vector3d, 4> start, end;
     for (int k = 0; k < 4; ++k) {
