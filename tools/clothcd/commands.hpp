@@ -27,5 +27,7 @@ void add_evaluate_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 /// Adds `clothcd gen-dataset --out FILE.csv [--scenes ...] [--cloths ...] [--steps N] [--seeds ...] [--max-rows N]`.
 void add_gen_dataset_command(CLI::App& app);
+/// Adds `clothcd bench all|NAME --out DIR [--quick] [...]`: forwards to the clothcd-bench program.
+void add_bench_command(CLI::App& app);
 
 }  // namespace clothcd::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   clothcd::cli::add_train_command(app);
   clothcd::cli::add_evaluate_command(app);
   clothcd::cli::add_gen_dataset_command(app);
+  clothcd::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,32 @@
+# CTest driver of `clothcd bench` (cmake -P). MODE=quick: `clothcd bench all --quick` must succeed and its report.md
+# must hold every section's heading. MODE=unknown: `clothcd bench nosuch` must fail and name the known sections.
+# Variables: CLOTHCD (the clothcd program), OUT (output folder), MODELS (obstacle model cache), MODE.
+if(MODE STREQUAL "unknown")
+  execute_process(COMMAND ${CLOTHCD} bench nosuch --out ${OUT} RESULT_VARIABLE status ERROR_VARIABLE err)
+  if(status EQUAL 0)
+    message(FATAL_ERROR "clothcd bench nosuch succeeded")
+  endif()
+  if(NOT err MATCHES "unknown section 'nosuch' \\(known: all, qem, obb")
+    message(FATAL_ERROR "unclear error message: ${err}")
+  endif()
+  return()
+endif()
+
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${CLOTHCD} bench all --quick --out ${OUT} --models ${MODELS} RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "clothcd bench all --quick failed (exit ${status})")
+endif()
+file(READ ${OUT}/report.md report)
+foreach(heading "# clothcd benchmark report" "## Contents" "## QEM simplification" "## OBB construction"
+        "## Detection time" "## CCD on the public benchmark" "Total time:")
+  string(FIND "${report}" "${heading}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${OUT}/report.md has no '${heading}'")
+  endif()
+endforeach()
+foreach(file qem.csv obb.csv obb_tightness.png detection.csv)
+  if(NOT EXISTS ${OUT}/${file})
+    message(FATAL_ERROR "${OUT}/${file} was not written")
+  endif()
+endforeach()

@@ -1,0 +1,172 @@
+// clothcd-bench: runs the benchmark sections (the paper's tables and figures, with peer libraries in the same run) and
+// writes their CSV and PNG files plus one Markdown report into the output folder.
+// Usage: clothcd-bench all|NAME --out DIR [--quick] [--models DIR] [--network DIR] [--ccd-queries DIR]
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_section.hpp"
+#include "bench_util.hpp"
+#include "clothcd/detection/network_culling.hpp"
+#include "machine_info.hpp"
+
+namespace fs = std::filesystem;
+using namespace clothcd::bench;
+
+namespace {
+
+const fs::path kSourceDir = CLOTHCD_BENCH_SOURCE_DIR;
+
+// $CLOTHCD_MODEL_DIR when set, else the source tree's .cache/models (where `clothcd meshes` keeps the models).
+fs::path default_models() {
+  if (const char* dir = std::getenv("CLOTHCD_MODEL_DIR"); dir && *dir) return dir;
+  return kSourceDir / ".cache" / "models";
+}
+
+// The committed pair network, or empty when neither the source nor the installed copy exists.
+fs::path default_network() {
+  try {
+    return clothcd::default_network_model_dir();
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+
+// The public CCD benchmark's sample queries beside the checkout (../shared/data/ccd-sample-queries), when present.
+std::optional<fs::path> default_ccd_queries() {
+  const fs::path dir = kSourceDir.parent_path() / "shared" / "data" / "ccd-sample-queries";
+  if (fs::is_directory(dir)) return dir;
+  return std::nullopt;
+}
+
+std::string section_names(const std::vector<Section>& sections) {
+  std::string names = "all";
+  for (const Section& s : sections) names += ", " + s.name;
+  return names;
+}
+
+// A GitHub-style anchor of a "## " heading: lower case, spaces to '-', other punctuation dropped.
+std::string anchor(const std::string& markdown) {
+  const std::size_t start = markdown.find("## ");
+  const std::string heading = markdown.substr(start == std::string::npos ? 0 : start + 3,
+                                              markdown.find('\n', start) - (start == std::string::npos ? 0 : start + 3));
+  std::string out;
+  for (const char c : heading) {
+    if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(c));
+    else if (c == ' ' || c == '-' || c == '_') out += c == ' ' ? '-' : c;
+  }
+  return out;
+}
+
+std::string first_heading(const std::string& markdown) {
+  const std::size_t start = markdown.find("## ");
+  if (start == std::string::npos) return "";
+  return markdown.substr(start + 3, markdown.find('\n', start) - start - 3);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<Section> sections = all_sections();
+  CLI::App app{"clothcd-bench: the paper's experiments beside the paper's figures and peer libraries", "clothcd-bench"};
+  std::string which;
+  BenchContext context;
+  context.obstacle_model_dir = default_models();
+  context.network_model_dir = default_network();
+  context.ccd_queries = default_ccd_queries();
+  std::string ccd_queries;
+  app.add_option("SECTION", which, "all, or one section: " + section_names(sections).substr(5))->required();
+  app.add_option("--out", context.out_dir, "Folder for report.md and the CSV and PNG files (created)")->required();
+  app.add_flag("--quick", context.quick, "CI-sized run: fewer models, steps and repetitions (under 2 minutes)");
+  app.add_option("--models", context.obstacle_model_dir, "Obstacle model cache (`clothcd meshes`)")
+      ->capture_default_str();
+  app.add_option("--network", context.network_model_dir, "Pair network model folder")->capture_default_str();
+  app.add_option("--ccd-queries", ccd_queries, "The public CCD benchmark's query folder (default: "
+                 "../shared/data/ccd-sample-queries beside the source tree, when present)");
+  std::string footer = "Sections:\n";
+  for (const Section& s : sections) footer += "  " + s.name + ": " + s.summary + "\n";
+  app.footer(footer);
+  CLI11_PARSE(app, argc, argv);
+
+  std::vector<Section> chosen;
+  for (const Section& s : sections)
+    if (which == "all" || which == s.name) chosen.push_back(s);
+  if (chosen.empty()) {
+    std::cerr << "clothcd-bench: error: unknown section '" << which << "' (known: " << section_names(sections)
+              << ")\n";
+    return 1;
+  }
+  if (!ccd_queries.empty()) {
+    if (!fs::is_directory(ccd_queries)) {
+      std::cerr << "clothcd-bench: error: --ccd-queries " << ccd_queries << ": no such folder\n";
+      return 1;
+    }
+    context.ccd_queries = fs::path(ccd_queries);
+  }
+  try {
+    fs::create_directories(context.out_dir);
+  } catch (const std::exception& e) {
+    std::cerr << "clothcd-bench: error: cannot create " << context.out_dir << ": " << e.what() << '\n';
+    return 1;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed_s = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<std::string> parts;
+  bool failed = false;
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const Section& section = chosen[i];
+    context.progress = [&](const std::string& step) {
+      std::cerr << "[" << section.name << "] " << step << "  (" << fixed(elapsed_s(), 1) << " s)\n";
+    };
+    context.progress("section " + std::to_string(i + 1) + "/" + std::to_string(chosen.size()) + ": " +
+                     section.summary);
+    const double section_start = elapsed_s();
+    try {
+      SectionReport report = section.run(context);
+      report.markdown += "\n*Section time: " + fixed(elapsed_s() - section_start, 1) + " s.";
+      if (!report.files.empty()) {
+        report.markdown += " Files:";
+        for (const std::string& f : report.files) report.markdown += " [" + f + "](" + f + ")";
+      }
+      parts.push_back(report.markdown + "*\n");
+    } catch (const std::exception& e) {
+      failed = true;
+      std::cerr << "clothcd-bench: error in section " << section.name << ": " << e.what() << '\n';
+      parts.push_back("## " + section.name + "\n\n**FAILED**: " + std::string(e.what()) + "\n");
+    }
+  }
+
+  std::string report = "# clothcd benchmark report\n\n";
+  report += "Every figure below was measured in this run; the paper's figures (Jin et al.) are quoted beside ours.\n\n";
+  report += "- Machine: " + cpu_description() + ", " + os_description() + "\n";
+  report += "- Load average (1 min) at the end of the run: " + load_average() +
+            " (a shared machine: compare ratios measured in the same run, not absolute times)\n";
+  report += "- Date: " + utc_now() + "\n";
+  report += "- Commit: " + git_commit(kSourceDir) + "\n";
+  report += std::string("- Mode: ") + (context.quick ? "quick (`--quick`, CI-sized)" : "full") + "\n";
+  report += "- Command: `clothcd bench " + which + " --out " + context.out_dir.string() +
+            (context.quick ? " --quick" : "") + "`\n\n## Contents\n\n";
+  for (const std::string& part : parts)
+    report += "- [" + first_heading(part) + "](#" + anchor(part) + ")\n";
+  for (const std::string& part : parts) report += "\n" + part;
+  report += "\nTotal time: " + fixed(elapsed_s(), 1) + " s.\n";
+  const fs::path report_path = context.out_dir / "report.md";
+  std::ofstream out(report_path);
+  out << report;
+  if (!out) {
+    std::cerr << "clothcd-bench: error: cannot write " << report_path << '\n';
+    return 1;
+  }
+  std::cerr << "clothcd-bench: wrote " << report_path.string() << " in " << fixed(elapsed_s(), 1) << " s\n";
+  return failed ? 1 : 0;
+}
