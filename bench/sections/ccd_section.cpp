@@ -22,7 +22,7 @@ struct ModeRow {
   double ns_per_query = 0, cull_ns_per_query = 0, median_ns = -1;
 };
 
-// The batch (cull, then the narrow phase on the kept queries), best of `repeat`; then one query at a time for the median.
+// The batch (cull, then the narrow phase on the kept queries), best of `repeat`; then one query at a time (median).
 ModeRow measure(const std::vector<ccd::QueryRecord>& records, const std::string& kind, const std::string& mode,
                 int repeat, NetworkCuller* network) {
   static const std::vector<std::pair<std::string, ccd::CcdFilter>> kFilters{

@@ -54,7 +54,8 @@ TriangleMesh compact(const Vertices& vertices, const std::vector<std::array<int,
 TriangleMesh simplify_meshopt(const TriangleMesh& mesh, int target_faces) {
   std::vector<float> positions(mesh.vertices.size());
   for (Eigen::Index v = 0; v < mesh.vertex_count(); ++v)
-    for (int k = 0; k < 3; ++k) positions[static_cast<std::size_t>(3 * v + k)] = static_cast<float>(mesh.vertices(v, k));
+    for (int k = 0; k < 3; ++k)
+      positions[static_cast<std::size_t>(3 * v + k)] = static_cast<float>(mesh.vertices(v, k));
   std::vector<unsigned> indices(static_cast<std::size_t>(mesh.faces.size()));
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
     for (int k = 0; k < 3; ++k) indices[static_cast<std::size_t>(3 * f + k)] = static_cast<unsigned>(mesh.faces(f, k));

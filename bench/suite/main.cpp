@@ -3,6 +3,7 @@
 // Usage: clothcd-bench all|NAME --out DIR [--quick] [--models DIR] [--network DIR] [--ccd-queries DIR]
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <exception>
@@ -52,11 +53,8 @@ std::string section_names(const std::vector<Section>& sections) {
   return names;
 }
 
-// A GitHub-style anchor of a "## " heading: lower case, spaces to '-', other punctuation dropped.
-std::string anchor(const std::string& markdown) {
-  const std::size_t start = markdown.find("## ");
-  const std::string heading = markdown.substr(start == std::string::npos ? 0 : start + 3,
-                                              markdown.find('\n', start) - (start == std::string::npos ? 0 : start + 3));
+// A GitHub-style anchor of a heading: lower case, spaces to '-', other punctuation dropped.
+std::string anchor(const std::string& heading) {
   std::string out;
   for (const char c : heading) {
     if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(c));
@@ -65,6 +63,7 @@ std::string anchor(const std::string& markdown) {
   return out;
 }
 
+// The text of the first "## " heading of a section's Markdown.
 std::string first_heading(const std::string& markdown) {
   const std::size_t start = markdown.find("## ");
   if (start == std::string::npos) return "";
@@ -157,7 +156,7 @@ int main(int argc, char** argv) {
   report += "- Command: `clothcd bench " + which + " --out " + context.out_dir.string() +
             (context.quick ? " --quick" : "") + "`\n\n## Contents\n\n";
   for (const std::string& part : parts)
-    report += "- [" + first_heading(part) + "](#" + anchor(part) + ")\n";
+    report += "- [" + first_heading(part) + "](#" + anchor(first_heading(part)) + ")\n";
   for (const std::string& part : parts) report += "\n" + part;
   report += "\nTotal time: " + fixed(elapsed_s(), 1) + " s.\n";
   const fs::path report_path = context.out_dir / "report.md";

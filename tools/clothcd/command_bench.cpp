@@ -1,5 +1,5 @@
-// `clothcd bench all|NAME --out DIR [...]`: runs the benchmark program clothcd-bench (built with CLOTHCD_BUILD_BENCH=ON,
-// which links the peer libraries) with the same arguments and returns its exit code.
+// `clothcd bench all|NAME --out DIR [...]`: runs the benchmark program clothcd-bench (built with
+// CLOTHCD_BUILD_BENCH=ON, which links the peer libraries) with the same arguments and returns its exit code.
 #include <sys/wait.h>
 #include <unistd.h>
 
