@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "clothcd/mesh/mesh_validation.hpp"
+#include "quaternary_heap.hpp"
 
 namespace clothcd::geometry {
 namespace {
@@ -108,12 +109,6 @@ struct Candidate {
 };
 static_assert(sizeof(Candidate) == 16, "heap entries should stay 16 bytes");
 
-// Min-heap order for the std heap functions (a functor, so the comparison inlines).
-struct HeapAfter {
-  bool operator()(const Candidate& a, const Candidate& b) const { return a.cost > b.cost; }
-};
-constexpr HeapAfter heap_after{};
-
 struct CellKey {
   long long x, y, z;
   bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -139,13 +134,16 @@ class Simplifier {
     if (settings_.non_edge_threshold > 0) push_close_pairs(settings_.non_edge_threshold / scale_);
     SimplifyResult result;
     result.faces_before = live_faces_;
+    size_t purge_at = 2 * heap_.size();
     while (live_faces_ > target_faces && !heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), heap_after);
-      const Candidate c = heap_.back();
-      heap_.pop_back();
-      if (!alive_[c.u] || !alive_[c.v] || std::uint16_t(stamp_[c.u]) != c.stamp_u ||
-          std::uint16_t(stamp_[c.v]) != c.stamp_v)
-        continue;
+      // Stale entries pile up (each contraction re-pushes the pairs of its vertex): drop them whenever they would make
+      // up half the heap, so it stays small and cache-friendly.
+      if (heap_.size() > purge_at) {
+        heap_.retain_if([this](const Candidate& c) { return is_current(c); });
+        purge_at = 2 * heap_.size();
+      }
+      const Candidate c = heap_.pop();
+      if (!is_current(c)) continue;
       const Quadric q = sum(quadric_[c.u], quadric_[c.v]);
       const Placement placement = place(q, position_[c.u], position_[c.v]);
       const double error = q.area > 0 ? std::sqrt(placement.cost / q.area) : 0.0;
@@ -163,6 +161,12 @@ class Simplifier {
   }
 
  private:
+  // False for a heap entry whose vertices were contracted away or changed since it was pushed.
+  [[nodiscard]] bool is_current(const Candidate& c) const {
+    return alive_[size_t(c.u)] && alive_[size_t(c.v)] && std::uint16_t(stamp_[size_t(c.u)]) == c.stamp_u &&
+           std::uint16_t(stamp_[size_t(c.v)]) == c.stamp_v;
+  }
+
   void rescale(const TriangleMesh& mesh) {
     origin_ = mesh.vertices.colwise().minCoeff().transpose();
     const Eigen::Vector3d extent = mesh.vertices.colwise().maxCoeff().transpose() - origin_;
@@ -199,22 +203,33 @@ class Simplifier {
     }
   }
 
-  [[nodiscard]] int faces_with_edge(int a, int b) const {
-    int count = 0;
-    for (int f : vertex_faces_[size_t(a)]) {
-      const auto& t = faces_[size_t(f)];
-      count += face_alive_[size_t(f)] && (t[0] == b || t[1] == b || t[2] == b);
+  // edge_faces_[f][k]: how many live faces hold the edge from corner k to corner k + 1 of face f. Counted per start
+  // vertex a: every face of a adds one to each of its two other corners, so a neighbour's count is its edge's.
+  void count_edge_faces() {
+    edge_faces_.assign(faces_.size(), {0, 0, 0});
+    std::vector<int> count(position_.size(), 0);
+    for (size_t a = 0; a < position_.size(); ++a) {
+      const auto& around = vertex_faces_[a];
+      for (int f : around)
+        for (int w : faces_[size_t(f)]) ++count[size_t(w)];
+      for (int f : around) {
+        const auto& t = faces_[size_t(f)];
+        const int k = t[0] == int(a) ? 0 : (t[1] == int(a) ? 1 : 2);
+        edge_faces_[size_t(f)][size_t(k)] = count[size_t(t[size_t((k + 1) % 3)])];
+      }
+      for (int f : around)
+        for (int w : faces_[size_t(f)]) count[size_t(w)] = 0;
     }
-    return count;
   }
 
   // Boundary edges (one face) get penalty planes; vertices of non-manifold edges (3+ faces) never move.
   void classify_edges() {
+    count_edge_faces();
     for (size_t f = 0; f < faces_.size(); ++f) {
       if (!face_alive_[f]) continue;
       for (int k = 0; k < 3; ++k) {
         const int a = faces_[f][size_t(k)], b = faces_[f][size_t((k + 1) % 3)];
-        const int count = faces_with_edge(a, b);
+        const int count = edge_faces_[f][size_t(k)];
         if (count == 1) {
           boundary_[size_t(a)] = boundary_[size_t(b)] = 1;
           boundary_edges_.push_back({a, b, int(f)});
@@ -267,8 +282,7 @@ class Simplifier {
     if (locked_[size_t(u)] || locked_[size_t(v)]) return;
     const Quadric q = sum(quadric_[size_t(u)], quadric_[size_t(v)]);
     const double cost = place(q, position_[size_t(u)], position_[size_t(v)]).cost;
-    heap_.push_back({float(cost), u, v, std::uint16_t(stamp_[size_t(u)]), std::uint16_t(stamp_[size_t(v)])});
-    std::push_heap(heap_.begin(), heap_.end(), heap_after);
+    heap_.push({float(cost), u, v, std::uint16_t(stamp_[size_t(u)]), std::uint16_t(stamp_[size_t(v)])});
   }
 
   void push_edge_pairs() {
@@ -278,14 +292,14 @@ class Simplifier {
       for (int k = 0; k < 3; ++k) {
         const int a = faces_[f][size_t(k)], b = faces_[f][size_t((k + 1) % 3)];
         // Each interior edge appears in two faces: take it once, from the face where it runs upwards.
-        if (a < b || faces_with_edge(a, b) == 1) {
+        if (a < b || edge_faces_[f][size_t(k)] == 1) {
           if (locked_[size_t(a)] || locked_[size_t(b)]) continue;
           const Quadric q = sum(quadric_[size_t(a)], quadric_[size_t(b)]);
-          heap_.push_back({float(place(q, position_[size_t(a)], position_[size_t(b)]).cost), a, b, 0, 0});
+          heap_.push_unordered({float(place(q, position_[size_t(a)], position_[size_t(b)]).cost), a, b, 0, 0});
         }
       }
     }
-    std::make_heap(heap_.begin(), heap_.end(), heap_after);
+    heap_.heapify();
   }
 
   // Vertex pairs closer than `threshold` (unit-scale) that share no edge, found through a uniform grid of that cell size.
@@ -470,13 +484,14 @@ class Simplifier {
   std::vector<Eigen::Vector3d> position_;
   std::vector<Quadric> quadric_;
   std::vector<std::array<int, 3>> faces_;
+  std::vector<std::array<int, 3>> edge_faces_;  // live faces per face edge, at the start (count_edge_faces)
   std::vector<char> face_alive_, alive_, locked_, boundary_;
   std::vector<unsigned> stamp_, mark_;
   unsigned epoch_ = 0;
   std::vector<int> parent_;
   std::vector<std::vector<int>> vertex_faces_, partners_;
   std::vector<std::array<int, 3>> boundary_edges_;  // a, b, face
-  std::vector<Candidate> heap_;
+  detail::QuaternaryHeap<Candidate> heap_;
   int live_faces_ = 0;
 };
 
