@@ -104,7 +104,7 @@ std::vector<std::vector<std::string>> render_simplification_levels(const BenchCo
   const geometry::Obb full = geometry::compute_obb(rabbit, geometry::ObbMethod::FastAdaptive);
   const geometry::Aabb box = geometry::compute_aabb(rabbit.vertices);
   render::Camera camera = render::frame_box(box.min, box.max);
-  camera.fov_degrees *= 0.6;  // closer framing: the model fills its cell
+  camera.fov_degrees *= 0.75;  // closer framing: the model fills its cell
   render::RenderSettings settings;
   settings.width = 200;
   settings.height = 150;
