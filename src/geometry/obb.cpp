@@ -90,14 +90,8 @@ Eigen::Matrix3d refine_axes(const std::vector<Eigen::Vector3d>& points, Eigen::M
   return axes;
 }
 
-// Jin et al. eqs. 11-18, then (optionally) refine_axes on S'. `scratch.keep` is left all zero on return.
-Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSettings& settings, ObbScratch& scratch) {
-  const Eigen::Index n = v.rows();
-  if (n == 0) return Eigen::Matrix3d::Identity();  // e.g. a model simplified to nothing: the extents still bound it
-  const int slabs = settings.slabs;
-  auto& keep = scratch.keep;
-  keep.resize(static_cast<size_t>(n), 0);
-  // Eqs. 11-14: area-weighted centre of the surface.
+// Eqs. 11-14: the area-weighted centre of the surface (the vertex mean when it has no area).
+Eigen::Vector3d area_weighted_centre(const Vertices& v, const Faces& faces) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double area = 0.0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
@@ -107,7 +101,26 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
     centre += s * (a + b + c) / 3.0;
     area += s;
   }
-  centre = area > 0 ? Eigen::Vector3d(centre / area) : Eigen::Vector3d(v.colwise().mean().transpose());
+  return area > 0 ? Eigen::Vector3d(centre / area) : Eigen::Vector3d(v.colwise().mean().transpose());
+}
+
+// What a rigidly moving model can reuse between rebuilds: the centre of eqs. 11-14 moves with the model, and the
+// triangles touching a vertex never change.
+struct AdaptiveHints {
+  Eigen::Vector3d centre;               // area-weighted centre at the current pose
+  const std::vector<int>* face_begin;   // faces of vertex i: face_list[face_begin[i] .. face_begin[i + 1])
+  const std::vector<int>* face_list;
+};
+
+// Jin et al. eqs. 11-18, then (optionally) refine_axes on S'. `scratch.keep` is left all zero on return.
+Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSettings& settings, ObbScratch& scratch,
+                              const AdaptiveHints* hints = nullptr) {
+  const Eigen::Index n = v.rows();
+  if (n == 0) return Eigen::Matrix3d::Identity();  // e.g. a model simplified to nothing: the extents still bound it
+  const int slabs = settings.slabs;
+  auto& keep = scratch.keep;
+  keep.resize(static_cast<size_t>(n), 0);
+  const Eigen::Vector3d centre = hints ? hints->centre : area_weighted_centre(v, faces);
   // Eqs. 15-16: s slabs of width k = (Q_max - Q_min) / s per axis; each slab keeps its vertex farthest from the centre
   // and its extremes in the two other coordinates (the slab's silhouette).
   const Eigen::Vector3d lo = v.colwise().minCoeff().transpose(), hi = v.colwise().maxCoeff().transpose();
@@ -142,15 +155,36 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
   long long corners = 0;
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const int i = faces(f, 0), j = faces(f, 1), k = faces(f, 2);
-    if (!(keep[size_t(i)] | keep[size_t(j)] | keep[size_t(k)])) continue;
-    for (int w : {i, j, k}) {
-      const Eigen::Vector3d p = v.row(w).transpose() - centre;  // centred for round-off; the covariance is unchanged
+  auto add_face = [&](Eigen::Index f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = v.row(faces(f, k)).transpose() - centre;  // centred for round-off; same covariance
       sum += p;
       outer.noalias() += p * p.transpose();
     }
     corners += 3;
+  };
+  if (hints) {  // the faces of the kept vertices, each once
+    auto& seen = scratch.face_seen;
+    seen.resize(static_cast<size_t>(faces.rows()), 0);
+    for (int pass = 0; pass < 2; ++pass) {  // add, then clear the marks
+      for (int k = 0; k < 3 * s * kPerSlab; ++k) {
+        const int i = best[size_t(k)];
+        if (i < 0) continue;
+        for (int e = (*hints->face_begin)[size_t(i)]; e < (*hints->face_begin)[size_t(i) + 1]; ++e) {
+          const int f = (*hints->face_list)[size_t(e)];
+          if (pass == 1) {
+            seen[size_t(f)] = 0;
+          } else if (!seen[size_t(f)]) {
+            seen[size_t(f)] = 1;
+            add_face(f);
+          }
+        }
+      }
+    }
+  } else {
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      if (keep[size_t(faces(f, 0))] | keep[size_t(faces(f, 1))] | keep[size_t(faces(f, 2))]) add_face(f);
+    }
   }
   if (corners == 0) {  // no faces: the kept vertices themselves
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -294,17 +328,40 @@ SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& se
     simplified_.vertices = original.vertices;
   }
   hull_indices_ = compute_convex_hull(original.vertices).vertex_indices;
-  hull_points_.resize(static_cast<Eigen::Index>(hull_indices_.size()), 3);
+  Vertices hull_points(static_cast<Eigen::Index>(hull_indices_.size()), 3);
   for (size_t i = 0; i < hull_indices_.size(); ++i)
-    hull_points_.row(Eigen::Index(i)) = original.vertices.row(hull_indices_[i]);
+    hull_points.row(Eigen::Index(i)) = original.vertices.row(hull_indices_[i]);
+  hull_support_ = SupportPoints(hull_points);
+  rest_centre_ = area_weighted_centre(simplified_.vertices, simplified_.faces);
+  // Vertex -> face adjacency of the simplified model (compressed rows).
+  face_begin_.assign(static_cast<size_t>(simplified_.vertex_count()) + 1, 0);
+  for (Eigen::Index f = 0; f < simplified_.face_count(); ++f)
+    for (int k = 0; k < 3; ++k) ++face_begin_[size_t(simplified_.faces(f, k)) + 1];
+  for (size_t i = 1; i < face_begin_.size(); ++i) face_begin_[i] += face_begin_[i - 1];
+  face_list_.resize(size_t(face_begin_.back()));
+  std::vector<int> fill(face_begin_.begin(), face_begin_.end() - 1);
+  for (Eigen::Index f = 0; f < simplified_.face_count(); ++f)
+    for (int k = 0; k < 3; ++k) face_list_[size_t(fill[size_t(simplified_.faces(f, k))]++)] = int(f);
   moved_ = simplified_;
-  moved_hull_ = hull_points_;
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
-  moved_hull_ = (hull_points_ * pose.linear().transpose()).rowwise() + pose.translation().transpose();
   moved_.vertices = (simplified_.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
-  return fit_obb_to_axes(moved_hull_, adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_));
+  const AdaptiveHints hints{pose * rest_centre_, &face_begin_, &face_list_};
+  Obb box;
+  box.axes = adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_, &hints);
+  // Extents: along a world axis a the moved hull vertices project to a . (R p + t) = (R^T a) . p + a . t, so the
+  // support of R^T a over the hull at rest gives them (exactly the max over every hull vertex, see SupportPoints).
+  Eigen::Vector3d lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d axis = box.axes.col(k), at_rest = pose.linear().transpose() * axis;
+    const double shift = axis.dot(pose.translation());
+    hi[k] = hull_support_.max_dot(at_rest) + shift;
+    lo[k] = -hull_support_.max_dot(-at_rest) + shift;
+  }
+  box.center = box.axes * (0.5 * (lo + hi));
+  box.half_extents = 0.5 * (hi - lo);
+  return box;
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose, const Vertices& original_vertices) {

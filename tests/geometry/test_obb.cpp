@@ -140,6 +140,34 @@ TEST_CASE("The simplified-model box bounds the original model at every pose", "[
         Approx(compute_obb(mesh, ObbMethod::FastAdaptiveSimplified).volume()).epsilon(1e-9));
 }
 
+TEST_CASE("The simplified-model box per update: exact extents, axes as a full rebuild", "[geometry][obb][simplified]") {
+  const TriangleMesh mesh = test::load_model("dinosaur");
+  ObbSettings paper;
+  paper.refine_axes = false;
+  for (const ObbSettings& settings : {paper, ObbSettings{}}) {
+    SimplifiedObb builder(mesh, settings);
+    std::mt19937_64 random(5);
+    for (int step = 0; step < 20; ++step) {
+      const Eigen::Isometry3d pose = step == 0 ? Eigen::Isometry3d::Identity() : random_pose(random);
+      const Vertices moved = (mesh.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
+      const Obb box = builder.update(pose);
+      check_bounds(box, moved);
+      // The support queries over the hull at rest give exactly the extents of every moved vertex on these axes.
+      const Obb scanned = fit_obb_to_axes(moved, box.axes);
+      const double scale = 1.0 + moved.cwiseAbs().maxCoeff();
+      CHECK((box.half_extents - scanned.half_extents).cwiseAbs().maxCoeff() < 1e-12 * scale);
+      CHECK((box.center - scanned.center).cwiseAbs().maxCoeff() < 1e-12 * scale);
+      if (settings.refine_axes) continue;  // refinement picks among near-ties, which round-off may reorder
+      // The axes equal those of the fast adaptive box of the moved simplified model rebuilt from scratch (up to sign).
+      TriangleMesh simplified = builder.simplified();
+      simplified.vertices =
+          (simplified.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
+      const Obb rebuilt = compute_obb(simplified, ObbMethod::FastAdaptive, settings);
+      for (int k = 0; k < 3; ++k) CHECK(std::abs(box.axes.col(k).dot(rebuilt.axes.col(k))) == Approx(1.0).epsilon(1e-9));
+    }
+  }
+}
+
 TEST_CASE("Minimum-area rectangle matches brute force over hull edges", "[geometry][obb]") {
   std::mt19937_64 random(5);
   std::normal_distribution<double> n(0, 1);

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "clothcd/geometry/bounding_volumes.hpp"
+#include "clothcd/geometry/support_points.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::geometry {
@@ -37,6 +38,7 @@ struct ObbScratch {
   std::vector<Eigen::Vector3d> kept;     ///< The points of S'.
   std::vector<Eigen::Vector2d> plane;    ///< S' projected on a plane.
   std::vector<Eigen::Vector2d> hull;     ///< Its 2-D convex hull.
+  std::vector<char> face_seen;           ///< #F flags: triangles of S' already counted (SimplifiedObb only).
 };
 
 /// The box of `mesh` (vertices #V x 3, faces #F x 3) by `method`; axes right-handed, half extents >= 0.
@@ -56,6 +58,9 @@ void grow_obb(Obb& box, const Vertices& points);
 /// The box of update() takes its axes from the fast adaptive OBB of the simplified model at `pose` and its extents from
 /// the projections of the original model's convex-hull vertices at `pose`; because a rigid (indeed any affine) map sends
 /// the hull of the points to the hull of the mapped points, the box contains every original vertex at that pose.
+/// Per update only the simplified model is moved: the centre of eqs. 11-14 is moved from rest, the triangles of S' come
+/// from a vertex -> face table, and each extent is an exact support query over the hull vertices at rest along the
+/// axis turned back by the pose (SupportPoints: most hull vertices are skipped by sphere bounds, none wrongly).
 class SimplifiedObb {
  public:
   /// Simplifies `original` to `settings.simplify_ratio` of its faces (QEM) and records its convex-hull vertices.
@@ -76,11 +81,12 @@ class SimplifiedObb {
 
  private:
   TriangleMesh simplified_;
-  Vertices hull_points_;  // original hull vertices at rest
   std::vector<int> hull_indices_;
+  SupportPoints hull_support_;  // original hull vertices at rest
+  Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();  // eqs. 11-14 on the simplified model at rest
+  std::vector<int> face_begin_, face_list_;  // simplified model: faces of vertex i in face_list_[face_begin_[i] ..)
   ObbSettings settings_;
   TriangleMesh moved_;  // scratch: simplified model at the current pose
-  Vertices moved_hull_;  // scratch: hull vertices at the current pose
   ObbScratch scratch_;
 };
 
