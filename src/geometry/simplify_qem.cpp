@@ -134,13 +134,14 @@ class Simplifier {
     if (settings_.non_edge_threshold > 0) push_close_pairs(settings_.non_edge_threshold / scale_);
     SimplifyResult result;
     result.faces_before = live_faces_;
-    size_t purge_at = 2 * heap_.size();
+    // Stale entries pile up (each contraction re-pushes the pairs of its vertex): drop them all whenever the heap has
+    // grown by a quarter since the last purge, so it stays small and cache-friendly and stale entries are not popped
+    // one by one (a quarter did best on the bunny among 1/8 .. 1/2: 1/2 never purges there).
+    size_t purge_at = heap_.size() + heap_.size() / 4;
     while (live_faces_ > target_faces && !heap_.empty()) {
-      // Stale entries pile up (each contraction re-pushes the pairs of its vertex): drop them whenever they would make
-      // up half the heap, so it stays small and cache-friendly.
       if (heap_.size() > purge_at) {
         heap_.retain_if([this](const Candidate& c) { return is_current(c); });
-        purge_at = 2 * heap_.size();
+        purge_at = heap_.size() + heap_.size() / 4;
       }
       const Candidate c = heap_.pop();
       if (!is_current(c)) continue;
