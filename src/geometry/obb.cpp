@@ -104,12 +104,16 @@ Eigen::Vector3d area_weighted_centre(const Vertices& v, const Faces& faces) {
   return area > 0 ? Eigen::Vector3d(centre / area) : Eigen::Vector3d(v.colwise().mean().transpose());
 }
 
-// What a rigidly moving model can reuse between rebuilds: the centre of eqs. 11-14 moves with the model, and the
-// triangles touching a vertex never change.
+// What a rigidly moving model can reuse between rebuilds: the centre of eqs. 11-14 moves with the model, the triangles
+// touching a vertex never change, and each triangle's corner moments about the centre only turn with the pose
+// (p - c = R (p0 - c0), so sum (p - c) = R sum (p0 - c0) and sum (p - c)(p - c)^T = R [sum (p0 - c0)(p0 - c0)^T] R^T).
 struct AdaptiveHints {
   Eigen::Vector3d centre;               // area-weighted centre at the current pose
+  Eigen::Matrix3d rotation;             // the pose's rotation R
   const std::vector<int>* face_begin;   // faces of vertex i: face_list[face_begin[i] .. face_begin[i + 1])
   const std::vector<int>* face_list;
+  const std::vector<Eigen::Vector3d>* face_sum;    // per face: sum of its corners minus the centre, at rest
+  const std::vector<Eigen::Matrix3d>* face_outer;  // per face: sum of their outer products, at rest
 };
 
 // Jin et al. eqs. 11-18, then (optionally) refine_axes on S'. `scratch.keep` is left all zero on return.
@@ -155,15 +159,7 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
   long long corners = 0;
-  auto add_face = [&](Eigen::Index f) {
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d p = v.row(faces(f, k)).transpose() - centre;  // centred for round-off; same covariance
-      sum += p;
-      outer.noalias() += p * p.transpose();
-    }
-    corners += 3;
-  };
-  if (hints) {  // the faces of the kept vertices, each once
+  if (hints) {  // the faces of the kept vertices, each once, from their moments at rest
     auto& seen = scratch.face_seen;
     seen.resize(static_cast<size_t>(faces.rows()), 0);
     for (int pass = 0; pass < 2; ++pass) {  // add, then clear the marks
@@ -176,14 +172,24 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
             seen[size_t(f)] = 0;
           } else if (!seen[size_t(f)]) {
             seen[size_t(f)] = 1;
-            add_face(f);
+            sum += (*hints->face_sum)[size_t(f)];
+            outer += (*hints->face_outer)[size_t(f)];
+            corners += 3;
           }
         }
       }
     }
+    sum = hints->rotation * sum;
+    outer = hints->rotation * outer * hints->rotation.transpose();
   } else {
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-      if (keep[size_t(faces(f, 0))] | keep[size_t(faces(f, 1))] | keep[size_t(faces(f, 2))]) add_face(f);
+      if (!(keep[size_t(faces(f, 0))] | keep[size_t(faces(f, 1))] | keep[size_t(faces(f, 2))])) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d p = v.row(faces(f, k)).transpose() - centre;  // centred for round-off; same covariance
+        sum += p;
+        outer.noalias() += p * p.transpose();
+      }
+      corners += 3;
     }
   }
   if (corners == 0) {  // no faces: the kept vertices themselves
@@ -342,12 +348,21 @@ SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& se
   std::vector<int> fill(face_begin_.begin(), face_begin_.end() - 1);
   for (Eigen::Index f = 0; f < simplified_.face_count(); ++f)
     for (int k = 0; k < 3; ++k) face_list_[size_t(fill[size_t(simplified_.faces(f, k))]++)] = int(f);
+  face_sum_.assign(static_cast<size_t>(simplified_.face_count()), Eigen::Vector3d::Zero());
+  face_outer_.assign(face_sum_.size(), Eigen::Matrix3d::Zero());
+  for (Eigen::Index f = 0; f < simplified_.face_count(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = simplified_.vertices.row(simplified_.faces(f, k)).transpose() - rest_centre_;
+      face_sum_[size_t(f)] += p;
+      face_outer_[size_t(f)].noalias() += p * p.transpose();
+    }
+  }
   moved_ = simplified_;
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
   moved_.vertices = (simplified_.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
-  const AdaptiveHints hints{pose * rest_centre_, &face_begin_, &face_list_};
+  const AdaptiveHints hints{pose * rest_centre_, pose.linear(), &face_begin_, &face_list_, &face_sum_, &face_outer_};
   Obb box;
   box.axes = adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_, &hints);
   // Extents: along a world axis a the moved hull vertices project to a . (R p + t) = (R^T a) . p + a . t, so the

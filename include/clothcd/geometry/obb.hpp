@@ -59,7 +59,7 @@ void grow_obb(Obb& box, const Vertices& points);
 /// the projections of the original model's convex-hull vertices at `pose`; because a rigid (indeed any affine) map sends
 /// the hull of the points to the hull of the mapped points, the box contains every original vertex at that pose.
 /// Per update only the simplified model is moved: the centre of eqs. 11-14 is moved from rest, the triangles of S' come
-/// from a vertex -> face table, and each extent is an exact support query over the hull vertices at rest along the
+/// from a vertex -> face table with their covariance moments precomputed at rest (turned by the pose), and each extent is an exact support query over the hull vertices at rest along the
 /// axis turned back by the pose (SupportPoints: most hull vertices are skipped by sphere bounds, none wrongly).
 class SimplifiedObb {
  public:
@@ -85,6 +85,8 @@ class SimplifiedObb {
   SupportPoints hull_support_;  // original hull vertices at rest
   Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();  // eqs. 11-14 on the simplified model at rest
   std::vector<int> face_begin_, face_list_;  // simplified model: faces of vertex i in face_list_[face_begin_[i] ..)
+  std::vector<Eigen::Vector3d> face_sum_;    // simplified model at rest, per face: sum of (corner - rest_centre_)
+  std::vector<Eigen::Matrix3d> face_outer_;  // ... and sum of their outer products
   ObbSettings settings_;
   TriangleMesh moved_;  // scratch: simplified model at the current pose
   ObbScratch scratch_;
