@@ -153,8 +153,16 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
       }
     }
   }
-  for (int k = 0; k < 3 * s * kPerSlab; ++k)
-    if (best[size_t(k)] >= 0) keep[size_t(best[size_t(k)])] = 1;
+  // S': the distinct slab winners, in order of first appearance.
+  auto& kept_index = scratch.kept_index;
+  kept_index.clear();
+  for (int k = 0; k < 3 * s * kPerSlab; ++k) {
+    const int i = best[size_t(k)];
+    if (i >= 0 && !keep[size_t(i)]) {
+      keep[size_t(i)] = 1;
+      kept_index.push_back(i);
+    }
+  }
   // Eqs. 17-18: mean and covariance of the corners of the triangles touching the kept set S'.
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
@@ -163,9 +171,7 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
     auto& seen = scratch.face_seen;
     seen.resize(static_cast<size_t>(faces.rows()), 0);
     for (int pass = 0; pass < 2; ++pass) {  // add, then clear the marks
-      for (int k = 0; k < 3 * s * kPerSlab; ++k) {
-        const int i = best[size_t(k)];
-        if (i < 0) continue;
+      for (int i : kept_index) {
         for (int e = (*hints->face_begin)[size_t(i)]; e < (*hints->face_begin)[size_t(i) + 1]; ++e) {
           const int f = (*hints->face_list)[size_t(e)];
           if (pass == 1) {
@@ -202,12 +208,9 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
     }
   }
   scratch.kept.clear();
-  for (int k = 0; k < 3 * s * kPerSlab; ++k) {
-    const int i = best[size_t(k)];
-    if (i >= 0 && keep[size_t(i)]) {
-      keep[size_t(i)] = 0;
-      scratch.kept.push_back(v.row(i).transpose());
-    }
+  for (int i : kept_index) {
+    keep[size_t(i)] = 0;
+    scratch.kept.push_back(v.row(i).transpose());
   }
   const Eigen::Vector3d mean = sum / double(corners);
   const Eigen::Matrix3d axes = principal_axes(outer / double(corners) - mean * mean.transpose());

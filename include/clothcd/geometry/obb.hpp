@@ -35,6 +35,7 @@ struct ObbSettings {
 /// Reusable buffers of the fast adaptive OBB (so per-step rebuilds allocate nothing once warm).
 struct ObbScratch {
   std::vector<char> keep;                ///< #V flags of the slab extremes S'.
+  std::vector<int> kept_index;           ///< The rows of S' (distinct).
   std::vector<Eigen::Vector3d> kept;     ///< The points of S'.
   std::vector<Eigen::Vector2d> plane;    ///< S' projected on a plane.
   std::vector<Eigen::Vector2d> hull;     ///< Its 2-D convex hull.
