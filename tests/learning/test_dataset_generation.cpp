@@ -1,8 +1,6 @@
 // Dataset generation: labels recomputed from each row's geometry, determinism, bad settings.
 #include <catch2/catch.hpp>
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -27,11 +25,18 @@ DatasetGenerationSettings tiny_settings() {
   return s;
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+// Long enough (12 large steps) for the falling cloth to hit the box: real collisions among the candidates.
+DatasetGenerationSettings falling_on_box() {
+  DatasetGenerationSettings s = tiny_settings();
+  s.seeds = {2};
+  s.steps = 12;
+  return s;
+}
+
+std::size_t colliding_rows(const PairDataset& d) {
+  std::size_t n = 0;
+  for (int label : d.exact_label) n += label == 1 ? 1 : 0;
+  return n;
 }
 
 }  // namespace
@@ -80,10 +85,10 @@ TEST_CASE("the same settings give the same CSV, another seed another one", "[lea
   write_pair_dataset_csv(generate_pair_dataset(settings).dataset, b);
   settings.seed = 99;
   write_pair_dataset_csv(generate_pair_dataset(settings).dataset, c);
-  const std::string text_a = slurp(a);
+  const std::string text_a = test::read_file(a);
   CHECK(!text_a.empty());
-  CHECK(text_a == slurp(b));
-  CHECK(text_a != slurp(c));
+  CHECK(text_a == test::read_file(b));
+  CHECK(text_a != test::read_file(c));
 }
 
 TEST_CASE("bad generation settings are clear errors", "[learning][gen-dataset]") {
@@ -125,4 +130,32 @@ TEST_CASE("clothcd gen-dataset writes a CSV that reads back, and rejects bad arg
   const test::CliRun zero = test::run_cli("gen-dataset --out '" + out + "' --steps 0");
   CHECK(zero.exit_code != 0);
   CHECK_THAT(zero.output, Catch::Contains("steps must be at least 1"));
+}
+
+TEST_CASE("keep_collisions keeps every colliding candidate and samples the rest", "[learning][gen-dataset]") {
+  DatasetGenerationSettings everything = falling_on_box();
+  everything.max_rows = 100'000'000;  // larger than the candidates: no sampling, every candidate is a row
+  const GeneratedDataset all = generate_pair_dataset(everything);
+  REQUIRE(all.dataset.row_count() == all.candidates_seen);
+  const std::size_t collisions = colliding_rows(all.dataset);
+  REQUIRE(collisions > 0);  // the scene must produce real collisions for this test to mean anything
+
+  DatasetGenerationSettings sampled = falling_on_box();
+  sampled.max_rows = collisions + 40;
+  sampled.keep_collisions = true;
+  const GeneratedDataset kept = generate_pair_dataset(sampled);
+  CHECK(kept.collisions_seen == collisions);
+  CHECK(colliding_rows(kept.dataset) == collisions);
+  CHECK(kept.dataset.row_count() <= sampled.max_rows);  // collisions count towards max_rows when it has room
+  CHECK(kept.dataset.row_count() > collisions);  // the uniform sample is there too
+  for (std::size_t i = 0; i < kept.dataset.row_count(); ++i) {
+    const bool hit = ccd::continuous_collision(kept.queries[i]).hit;
+    REQUIRE(kept.dataset.exact_label[i] == (hit ? 1 : 0));
+  }
+
+  sampled.keep_collisions = false;
+  const GeneratedDataset plain = generate_pair_dataset(sampled);
+  CHECK(plain.dataset.row_count() == sampled.max_rows);
+  CHECK(plain.collisions_seen == 0);  // only counted with keep_collisions
+  CHECK(colliding_rows(plain.dataset) < collisions);
 }
