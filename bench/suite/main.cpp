@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
   const auto elapsed_s = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
+  const std::string commit = git_commit(kSourceDir);  // before the sections write their results into the tree
   std::vector<std::string> parts;
   bool failed = false;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
@@ -151,7 +152,7 @@ int main(int argc, char** argv) {
   report += "- Load average (1 min) at the end of the run: " + load_average() +
             " (a shared machine: compare ratios measured in the same run, not absolute times)\n";
   report += "- Date: " + utc_now() + "\n";
-  report += "- Commit: " + git_commit(kSourceDir) + "\n";
+  report += "- Commit: " + commit + " (at the start of the run)\n";
   report += std::string("- Mode: ") + (context.quick ? "quick (`--quick`, CI-sized)" : "full") + "\n";
   report += "- Command: `clothcd bench " + which + " --out " + context.out_dir.string() +
             (context.quick ? " --quick" : "") + "`\n\n## Contents\n\n";
