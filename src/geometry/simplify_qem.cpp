@@ -2,8 +2,9 @@
 // Error Metrics", SIGGRAPH 1997 (Jin et al. section 2.1, eqs. 1-5). Each vertex carries the area-weighted sum of the
 // fundamental quadrics K_p = p p^T of its faces' planes; the pair (v1, v2) costs v^T (Q1 + Q2) v at the v minimising it.
 // Open boundaries get penalty planes through the boundary edge, perpendicular to its face (Garland & Heckbert sec. 5).
-// Pipeline: rescale -> build adjacency -> quadrics -> candidate pairs (edges, optional close non-edge pairs) ->
-// contract from a binary heap with version stamps (stale entries are skipped) -> compact the result.
+// Pipeline: rescale and renumber along a Morton curve -> build adjacency -> quadrics -> candidate pairs (edges,
+// optional close non-edge pairs) -> contract from a binary heap with version stamps (stale entries are skipped) ->
+// compact the result.
 #include "clothcd/geometry/simplify.hpp"
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "clothcd/mesh/mesh_validation.hpp"
+#include "morton_order.hpp"
 #include "quaternary_heap.hpp"
 
 namespace clothcd::geometry {
@@ -173,8 +175,17 @@ class Simplifier {
     const Eigen::Vector3d extent = mesh.vertices.colwise().maxCoeff().transpose() - origin_;
     scale_ = extent.maxCoeff() > 0 ? extent.maxCoeff() : 1.0;
     const auto n = static_cast<size_t>(mesh.vertex_count());
+    std::vector<Eigen::Vector3d> unit(n);
+    for (size_t i = 0; i < n; ++i) unit[i] = (mesh.vertices.row(Eigen::Index(i)).transpose() - origin_) / scale_;
+    // Vertices are renumbered along a Morton curve so surface neighbours share cache lines; compact() restores a
+    // numbering that does not depend on this one.
+    const std::vector<int> order = detail::morton_order(unit);
     position_.resize(n);
-    for (size_t i = 0; i < n; ++i) position_[i] = (mesh.vertices.row(Eigen::Index(i)).transpose() - origin_) / scale_;
+    internal_index_.resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      position_[k] = unit[size_t(order[k])];
+      internal_index_[size_t(order[k])] = int(k);
+    }
     alive_.assign(n, 1);
     locked_.assign(n, 0);
     boundary_.assign(n, 0);
@@ -188,14 +199,33 @@ class Simplifier {
   void build_faces(const TriangleMesh& mesh) {
     faces_.resize(static_cast<size_t>(mesh.face_count()));
     face_alive_.assign(faces_.size(), 0);
+    // Faces are stored in the order of their least (Morton-numbered) vertex, by a counting sort, for the same cache
+    // locality as the vertices; compact() writes them back in the input's order.
+    std::vector<int> first_slot(position_.size() + 1, 0);
+    auto corners = [&](Eigen::Index f) {
+      const auto& r = mesh.faces.row(f);
+      return std::array<int, 3>{internal_index_[size_t(r(0))], internal_index_[size_t(r(1))],
+                                internal_index_[size_t(r(2))]};
+    };
+    auto least_vertex = [&](Eigen::Index f) {
+      const std::array<int, 3> t = corners(f);
+      return size_t(std::min({t[0], t[1], t[2]}));
+    };
+    for (Eigen::Index f = 0; f < mesh.face_count(); ++f) ++first_slot[least_vertex(f) + 1];
+    for (size_t v = 0; v < position_.size(); ++v) first_slot[v + 1] += first_slot[v];
+    internal_face_.resize(faces_.size());
+    for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
+      const int slot = first_slot[least_vertex(f)]++;
+      internal_face_[size_t(f)] = slot;
+      faces_[size_t(slot)] = corners(f);
+    }
     std::vector<int> valence(position_.size(), 0);
     for (size_t f = 0; f < faces_.size(); ++f) {
-      const auto& r = mesh.faces.row(Eigen::Index(f));
-      faces_[f] = {r(0), r(1), r(2)};
-      if (r(0) == r(1) || r(1) == r(2) || r(0) == r(2)) continue;
+      const auto& t = faces_[f];
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
       face_alive_[f] = 1;
       ++live_faces_;
-      for (int k = 0; k < 3; ++k) ++valence[size_t(r(k))];
+      for (int w : faces_[f]) ++valence[size_t(w)];
     }
     for (size_t v = 0; v < position_.size(); ++v) vertex_faces_[v].reserve(size_t(valence[v]) + 4);
     for (size_t f = 0; f < faces_.size(); ++f) {
@@ -416,14 +446,21 @@ class Simplifier {
     }
     std::vector<int>().swap(vertex_faces_[size_t(u)]);
     live_faces_of(v);
+    // Gather the neighbours and start loading their quadrics (two cache lines each, mostly cold) before costing any
+    // pair, so the loads overlap instead of stalling one push after another.
     const unsigned pushed = ++epoch_;
+    neighbours_.clear();
     for (int f : faces_v) {
       for (int w : faces_[size_t(f)]) {
         if (w == v || mark_[size_t(w)] == pushed) continue;
         mark_[size_t(w)] = pushed;
-        push_pair(v, w);
+        neighbours_.push_back(w);
+        const char* bytes = reinterpret_cast<const char*>(&quadric_[size_t(w)]);
+        __builtin_prefetch(bytes);
+        __builtin_prefetch(bytes + sizeof(Quadric) - 1);
       }
     }
+    for (int w : neighbours_) push_pair(v, w);
     if (!partners_.empty()) requeue_partners(u, v, pushed);
   }
 
@@ -457,10 +494,10 @@ class Simplifier {
     std::vector<int> new_index(position_.size(), -1);
     int vertex_count = 0;
     int face_count = 0;
-    for (size_t f = 0; f < faces_.size(); ++f) {
-      if (!face_alive_[f]) continue;
+    for (int f : internal_face_) {
+      if (!face_alive_[size_t(f)]) continue;
       ++face_count;
-      for (int w : faces_[f]) {
+      for (int w : faces_[size_t(f)]) {
         if (new_index[size_t(w)] < 0) new_index[size_t(w)] = vertex_count++;
       }
     }
@@ -471,9 +508,9 @@ class Simplifier {
       if (new_index[v] >= 0) out.vertices.row(new_index[v]) = (position_[v] * scale_ + origin_).transpose();
     }
     int row = 0;
-    for (size_t f = 0; f < faces_.size(); ++f) {
-      if (!face_alive_[f]) continue;
-      for (int k = 0; k < 3; ++k) out.faces(row, k) = new_index[size_t(faces_[f][size_t(k)])];
+    for (int f : internal_face_) {
+      if (!face_alive_[size_t(f)]) continue;
+      for (int k = 0; k < 3; ++k) out.faces(row, k) = new_index[size_t(faces_[size_t(f)][size_t(k)])];
       ++row;
     }
     return out;
@@ -483,13 +520,16 @@ class Simplifier {
   Eigen::Vector3d origin_;
   double scale_ = 1.0;
   std::vector<Eigen::Vector3d> position_;
+  std::vector<int> internal_index_;  // input vertex -> its index here (Morton order)
   std::vector<Quadric> quadric_;
   std::vector<std::array<int, 3>> faces_;
+  std::vector<int> internal_face_;  // input face -> its index here (ordered by least vertex)
   std::vector<std::array<int, 3>> edge_faces_;  // live faces per face edge, at the start (count_edge_faces)
   std::vector<char> face_alive_, alive_, locked_, boundary_;
   std::vector<unsigned> stamp_, mark_;
   unsigned epoch_ = 0;
   std::vector<int> parent_;
+  std::vector<int> neighbours_;  // scratch of contract()
   std::vector<std::vector<int>> vertex_faces_, partners_;
   std::vector<std::array<int, 3>> boundary_edges_;  // a, b, face
   detail::QuaternaryHeap<Candidate> heap_;
