@@ -3,7 +3,7 @@
 // fundamental quadrics K_p = p p^T of its faces' planes; the pair (v1, v2) costs v^T (Q1 + Q2) v at the v minimising it.
 // Open boundaries get penalty planes through the boundary edge, perpendicular to its face (Garland & Heckbert sec. 5).
 // Pipeline: rescale and renumber along a Morton curve -> build adjacency -> quadrics -> candidate pairs (edges,
-// optional close non-edge pairs) -> contract from a binary heap with version stamps (stale entries are skipped) ->
+// optional close non-edge pairs) -> contract from a 4-ary heap with version stamps (stale entries are skipped) ->
 // compact the result.
 #include "clothcd/geometry/simplify.hpp"
 
