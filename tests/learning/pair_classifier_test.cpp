@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -131,14 +130,16 @@ TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
   CHECK_THROWS_WITH(PairClassifier::load(nan_weights), Catch::Contains("Parameters") && Catch::Contains("nan"));
 
   const std::string wrong_inputs = edited_model("inputs", "card.json", [](const std::string& text) {
-    return std::regex_replace(text, std::regex("\"inputs\": \\[\"[a-z_0-9]+\", "), "\"inputs\": [");
+    const std::size_t list = text.find("\"inputs\": [") + std::string("\"inputs\": [").size();
+    return text.substr(0, list) + text.substr(text.find(", ", list) + 2);  // drops the first input name
   });
   CHECK_THROWS_WITH(PairClassifier::load(wrong_inputs), Catch::Contains("inputs"));
 
   CHECK_THROWS_WITH(PairClassifier::load(dir, FeatureSettings{12}), Catch::Contains("features"));
 
   const std::string old_version = edited_model("version", "card.json", [](const std::string& text) {
-    return std::regex_replace(text, std::regex("\"feature_version\": [0-9]+"), "\"feature_version\": 999");
+    const std::size_t value = text.find("\"feature_version\": ") + std::string("\"feature_version\": ").size();
+    return text.substr(0, value) + "999" + text.substr(text.find(',', value));
   });
   CHECK_THROWS_WITH(PairClassifier::load(old_version), Catch::Contains("version"));
 
