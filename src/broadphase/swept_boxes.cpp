@@ -1,14 +1,18 @@
 // Swept primitive boxes for continuous collision detection: with linear motion over the step, a primitive stays inside
-// the box of its positions at t0 and t1, so that box (inflated by the thickness) bounds everything it sweeps.
+// the box of its positions at t0 and t1, so that box bounds everything it sweeps. Each box is grown by half of the
+// thickness: two primitives within the thickness of each other are within it along each axis, so grown boxes meet.
 #include "clothcd/broadphase/swept_boxes.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace clothcd::broadphase {
+namespace {
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+}  // namespace
 
 FlatBox empty_flat_box() {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  return FlatBox{{inf, inf, inf}, {-inf, -inf, -inf}};
+  return FlatBox{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
 }
 
 void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, const Vertices& end, double thickness,
@@ -17,12 +21,25 @@ void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, co
   boxes.vertices.resize(vertex_count);
   const double* p = start.data();
   const double* q = end.data();
+  const double half = 0.5 * thickness;
+  // x - half rounds to nearest, off by at most half a unit in the last place; moving the result outwards by 2^-52 of
+  // its magnitude (at least one unit in the last place, exact) and the smallest subnormal covers that rounding.
+  auto grown_min = [half](double x) {
+    if (half == 0.0) return x;
+    const double r = x - half;
+    return r - (std::fabs(r) * 0x1p-52 + 0x1p-1074);
+  };
+  auto grown_max = [half](double x) {
+    if (half == 0.0) return x;
+    const double r = x + half;
+    return r + (std::fabs(r) * 0x1p-52 + 0x1p-1074);
+  };
   for (int v = 0; v < vertex_count; ++v) {
     FlatBox& b = boxes.vertices[v];
     for (int k = 0; k < 3; ++k) {
       const double a = p[3 * v + k], c = q[3 * v + k];
-      b.min[k] = (a < c ? a : c) - thickness;
-      b.max[k] = (a < c ? c : a) + thickness;
+      b.min[k] = grown_min(a < c ? a : c);
+      b.max[k] = grown_max(a < c ? c : a);
     }
   }
   const int edge_count = topology.edge_count();

@@ -47,8 +47,9 @@ struct SweptBoxes {
   std::vector<FlatBox> faces;     ///< #F boxes, union of the three vertex boxes.
 };
 
-/// Fills `boxes` for positions `start` and `end` (#V x 3 each) with every box inflated by `thickness` (>= 0) on every
-/// side, reusing its storage. Two primitives whose distance stays below the thickness have overlapping boxes.
+/// Fills `boxes` for positions `start` and `end` (#V x 3 each), reusing its storage, with every box inflated by half
+/// of `thickness` (>= 0) on every side (rounded outwards): two primitives closer than the thickness at some instant
+/// are closer than it along every axis, so their boxes, each grown by half of it, overlap.
 /// Preconditions (checked by callers at the public boundary): matching sizes, finite coordinates.
 void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, const Vertices& end, double thickness,
                          SweptBoxes& boxes);
