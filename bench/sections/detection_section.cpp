@@ -2,10 +2,6 @@
 // box and the network-culled pipeline, cloth B on the chicken (bird), sphere, cube and fish) and Table 7 / Figure 15
 // (cloths A, B, C on the fish, growth from A to C). The frames come from simulation scenes, so the candidate pairs are
 // those of a cloth draping over the model; FCL's AABB BVH runs the cloth-vs-obstacle broad phase on the same frames.
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/math/bv/AABB.h>
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/collision_object.h>
 #include <tbb/global_control.h>
 
 #include <map>
@@ -16,26 +12,13 @@
 #include "../suite/bench_section.hpp"
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
+#include "../suite/draped_frames.hpp"
+#include "../suite/fcl_peer.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/simulation/scene.hpp"
 #include "clothcd/simulation/simulator.hpp"
 
 namespace clothcd::bench {
 namespace {
-
-// One step of the detector's view: the cloth at the start of the step and its free-flight end.
-struct Frame {
-  Vertices start, end;
-};
-
-// A simulated scene and the detector frames of its draping phase.
-struct Case {
-  std::string model;
-  char cloth = 'B';
-  TriangleMesh cloth_rest;  // topology of the cloth
-  TriangleMesh obstacle;
-  std::vector<Frame> frames;
-};
 
 struct Method {
   const char* name;
@@ -60,29 +43,6 @@ const std::map<char, std::vector<double>> kPaperTable7{{'A', {0.0154, 0.0151, 0.
 
 constexpr double kThickness = 0.004;  // the simulator's response thickness, also its detector's
 
-Case simulate(const std::string& model, char cloth, int steps, int frames, const BenchContext& context) {
-  simulation::SceneSettings scene_settings;
-  scene_settings.name = model;
-  scene_settings.cloth = cloth;
-  scene_settings.model_dir = context.obstacle_model_dir;
-  const simulation::Scene scene = simulation::make_scene(scene_settings);
-  simulation::SimulationSettings settings;
-  settings.dt = scene.default_dt;
-  simulation::Simulator simulator(scene, settings);
-  Case c{model, cloth, scene.cloth, scene.obstacles.front().rest, {}};
-  const Eigen::RowVector3d fall = settings.dt * settings.dt * settings.cloth.gravity.transpose();
-  for (int s = 0; s < steps; ++s) {
-    if (s >= steps - frames) {
-      const simulation::ClothState& state = simulator.state();
-      Frame frame{state.positions, state.positions + settings.dt * state.velocities};
-      frame.end.rowwise() += fall;
-      c.frames.push_back(std::move(frame));
-    }
-    (void)simulator.step();
-  }
-  return c;
-}
-
 struct Timing {
   double ms = 0, refit = 0, traversal = 0, culling = 0, exact = 0;
   double candidates = 0, culled = 0, collisions = 0, network_dropped = 0, network_overruled = 0;
@@ -101,7 +61,7 @@ DetectorSettings detector_settings(const Method& method, const BenchContext& con
 
 // One pass over the frames (after an untimed call at the first frame's start, which builds or refits the
 // hierarchies); the means per frame. Counts are the same in every pass.
-Timing detection_pass(CollisionDetector& detector, const Case& c) {
+Timing detection_pass(CollisionDetector& detector, const DrapedCase& c) {
   detector.detect(c.frames.front().start, c.frames.front().start);
   Timing t;
   for (const Frame& frame : c.frames) {
@@ -126,7 +86,7 @@ Timing detection_pass(CollisionDetector& detector, const Case& c) {
 
 // Every method's single-threaded detector on the frames: `passes` rounds taking the methods in turn (so a burst of
 // load on the shared machine hits them alike); per method the pass with the smallest mean time.
-std::vector<Timing> time_methods(const Case& c, const std::vector<Method>& methods, int passes,
+std::vector<Timing> time_methods(const DrapedCase& c, const std::vector<Method>& methods, int passes,
                                  const BenchContext& context, bool self_collision = true) {
   std::vector<CollisionDetector> detectors;
   for (const Method& m : methods) {
@@ -143,42 +103,14 @@ std::vector<Timing> time_methods(const Case& c, const std::vector<Method>& metho
   return best;
 }
 
-// ---------- FCL peer: AABB BVH of the cloth (refit per frame) against the obstacle's, every contact ----------
-using FclModel = fcl::BVHModel<fcl::AABBd>;
-
-std::vector<fcl::Vector3d> fcl_points(const Vertices& v) {
-  std::vector<fcl::Vector3d> p(static_cast<std::size_t>(v.rows()));
-  for (Eigen::Index i = 0; i < v.rows(); ++i) p[static_cast<std::size_t>(i)] = v.row(i).transpose();
-  return p;
-}
-
-std::shared_ptr<FclModel> fcl_model(const TriangleMesh& mesh, const Vertices& positions) {
-  std::vector<fcl::Triangle> triangles(static_cast<std::size_t>(mesh.face_count()));
-  for (Eigen::Index f = 0; f < mesh.face_count(); ++f)
-    triangles[static_cast<std::size_t>(f)] = fcl::Triangle(mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2));
-  auto model = std::make_shared<FclModel>();
-  model->beginModel();
-  model->addSubModel(fcl_points(positions), triangles);
-  model->endModel();
-  return model;
-}
-
 // FCL's broad phase per frame (refit to the end positions + collide with every contact), ms.
-double fcl_broad_phase_ms(const Case& c) {
+double fcl_broad_phase_ms(const DrapedCase& c) {
   auto cloth = fcl_model(c.cloth_rest, c.frames.front().start);
   auto obstacle = fcl_model(c.obstacle, c.obstacle.vertices);
   double total = 0;
   for (const Frame& frame : c.frames) {
     const auto points = fcl_points(frame.end);
-    total += time_ms([&] {
-      cloth->beginUpdateModel();
-      cloth->updateSubModel(points);
-      cloth->endUpdateModel(true, true);
-      fcl::CollisionObjectd a(cloth), b(obstacle);
-      fcl::CollisionRequestd request(100000000, false);
-      fcl::CollisionResultd result;
-      fcl::collide(&a, &b, request, result);
-    });
+    total += time_ms([&] { (void)fcl_refit_and_collide(cloth, points, obstacle); });
   }
   return total / static_cast<double>(c.frames.size());
 }
@@ -212,7 +144,7 @@ SectionReport run_detection(const BenchContext& context) {
     const std::string label = "cloth " + std::string(1, cloth) + " on " + model;
     context.progress(std::to_string(i + 1) + "/" + std::to_string(cases.size()) + " " + label + ": simulating " +
                      std::to_string(steps) + " steps");
-    const Case c = simulate(model, cloth, steps, frames, context);
+    const DrapedCase c = simulate_draping(model, cloth, steps, frames, context.obstacle_model_dir.string());
     cloth_triangles[cloth] = static_cast<long>(c.cloth_rest.face_count());
     context.progress(std::to_string(i + 1) + "/" + std::to_string(cases.size()) + " " + label + ": " +
                      std::to_string(methods.size()) + " methods and FCL on " + std::to_string(frames) + " frames");
