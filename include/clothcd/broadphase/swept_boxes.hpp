@@ -16,10 +16,11 @@ struct FlatBox {
   double min[3];  ///< Lower corner.
   double max[3];  ///< Upper corner.
 
-  /// True when the closed boxes share a point.
+  /// True when the closed boxes share a point. All six comparisons are evaluated (no early exit): in the search's
+  /// hot loops most tests fail on an unpredictable axis, and straight-line code avoids the mispredicted branches.
   [[nodiscard]] bool overlaps(const FlatBox& o) const {
-    return min[0] <= o.max[0] && o.min[0] <= max[0] && min[1] <= o.max[1] && o.min[1] <= max[1] &&
-           min[2] <= o.max[2] && o.min[2] <= max[2];
+    return (min[0] <= o.max[0]) & (o.min[0] <= max[0]) & (min[1] <= o.max[1]) & (o.min[1] <= max[1]) &
+           (min[2] <= o.max[2]) & (o.min[2] <= max[2]);
   }
   /// Grows the box to contain `o`.
   void expand(const FlatBox& o) {
