@@ -12,16 +12,19 @@
 //     one triangle of W has three 2D cross products of the same strict sign (a non-degenerate projected triangle with
 //     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
 //     then tightened to the first sub-piece where D is not certainly non-zero.
-// A piece left undecided at the maximum depth hands the whole query to the exact rational reference, so no collision
-// is ever missed. With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
+// A piece left undecided at the maximum depth hands the whole query to the exact expansion tier
+// (expansion_collision.cpp), and what that cannot decide to the exact rational reference, so no collision is ever
+// missed. With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
 // thickness_contact.cpp decides (no rational arithmetic).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "ccd/after_filter.hpp"
 #include "ccd/exact_reference.hpp"
+#include "ccd/expansion_collision.hpp"
 #include "ccd/interval.hpp"
 #include "ccd/thickness_contact.hpp"
 #include "clothcd/ccd/ccd.hpp"
@@ -312,6 +315,8 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool nonpenetration_c
     if (outcome == PieceOutcome::Clear) return CcdResult{};
     if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
   }
+  if (const std::optional<exact::ExactAnswer> answer = detail::expansion_collision(query))
+    return answer->hit ? make_hit(query, answer->toi, CcdState::Hit) : CcdResult{};
   const exact::ExactAnswer answer = exact::exact_collision(query.kind, rational_points(query));
   CcdResult result = answer.hit ? make_hit(query, answer.toi, CcdState::Hit) : CcdResult{};
   result.exact_fallback = true;

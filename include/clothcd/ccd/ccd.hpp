@@ -51,7 +51,9 @@ struct CcdResult {
   /// Of the closest points at toi (approximate); {0, 0} when unknown.
   std::array<double, 2> parameters{};
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi (zero when unknown or degenerate).
-  bool exact_fallback = false;  ///< True when floating point could not decide and exact rational arithmetic did.
+  /// True when neither the interval fast path nor the exact floating-point expansion tier could decide and GMP
+  /// rational arithmetic did.
+  bool exact_fallback = false;
 };
 
 /// Extra options of the projection filter.

@@ -1,0 +1,150 @@
+// Floating-point expansion arithmetic after Shewchuk (1997): error-free sum (Knuth's two-sum) and product (Dekker's
+// splitting), the linear-time sum of two expansions (merge by magnitude, then a chain of two-sums) and the product
+// of an expansion with a double, all with zero elimination. Each routine keeps the expansions strongly
+// non-overlapping, which the next routine needs (round-to-nearest-even double arithmetic, no FMA contraction: ISO
+// C++ mode).
+#include "ccd/expansion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clothcd::ccd::detail {
+
+namespace {
+
+// x + y = a + b exactly, x = fl(a + b).
+inline void two_sum(double a, double b, double& x, double& y) {
+  x = a + b;
+  const double b_virtual = x - a;
+  const double a_virtual = x - b_virtual;
+  y = (a - a_virtual) + (b - b_virtual);
+}
+
+// Same for |a| >= |b| (or a == 0).
+inline void fast_two_sum(double a, double b, double& x, double& y) {
+  x = a + b;
+  y = b - (x - a);
+}
+
+// a = hi + lo with both halves of at most 26 significant bits.
+inline void split(double a, double& hi, double& lo) {
+  const double c = 134217729.0 * a;  // 2^27 + 1
+  hi = c - (c - a);
+  lo = a - hi;
+}
+
+// x + y = a * b exactly, x = fl(a * b).
+inline void two_product(double a, double b, double& x, double& y) {
+  x = a * b;
+  double a_hi, a_lo, b_hi, b_lo;
+  split(a, a_hi, a_lo);
+  split(b, b_hi, b_lo);
+  const double error1 = x - a_hi * b_hi;
+  const double error2 = error1 - a_lo * b_hi;
+  const double error3 = error2 - a_hi * b_lo;
+  y = a_lo * b_lo - error3;
+}
+
+}  // namespace
+
+void sum_into(const Expansion& e, const Expansion& f, Expansion& h) {
+  h.size_ = 0;
+  if (e.size_ == 0 || f.size_ == 0) {
+    h = e.size_ == 0 ? f : e;
+    return;
+  }
+  double merged[2 * Expansion::kCapacity];
+  const auto by_magnitude = [](double a, double b) { return std::fabs(a) < std::fabs(b); };
+  const std::size_t count = e.size_ + f.size_;
+  std::merge(e.terms_, e.terms_ + e.size_, f.terms_, f.terms_ + f.size_, merged, by_magnitude);
+  double q = merged[0];
+  for (std::size_t i = 1; i < count; ++i) {
+    double q_new, rest;
+    two_sum(q, merged[i], q_new, rest);
+    if (rest != 0.0) h.push(rest);
+    q = q_new;
+  }
+  if (q != 0.0) h.push(q);
+}
+
+Expansion::Expansion(double x) {
+  if (x != 0.0) push(x);
+}
+
+Expansion Expansion::difference(double a, double b) {
+  Expansion r;
+  double x, y;
+  two_sum(a, -b, x, y);
+  if (y != 0.0) r.push(y);
+  if (x != 0.0) r.push(x);
+  return r;
+}
+
+Expansion operator+(const Expansion& a, const Expansion& b) {
+  Expansion r;
+  sum_into(a, b, r);
+  return r;
+}
+
+Expansion Expansion::operator-() const {
+  Expansion r = *this;
+  for (std::size_t i = 0; i < r.size_; ++i) r.terms_[i] = -r.terms_[i];
+  return r;
+}
+
+Expansion operator-(const Expansion& a, const Expansion& b) {
+  return a + (-b);
+}
+
+Expansion Expansion::scaled(double b) const {
+  Expansion r;
+  if (size_ == 0 || b == 0.0) return r;
+  double q, rest;
+  two_product(terms_[0], b, q, rest);
+  if (rest != 0.0) r.push(rest);
+  for (std::size_t i = 1; i < size_; ++i) {
+    double product_hi, product_lo, sum;
+    two_product(terms_[i], b, product_hi, product_lo);
+    two_sum(q, product_lo, sum, rest);
+    if (rest != 0.0) r.push(rest);
+    fast_two_sum(product_hi, sum, q, rest);
+    if (rest != 0.0) r.push(rest);
+  }
+  if (q != 0.0) r.push(q);
+  return r;
+}
+
+Expansion operator*(const Expansion& a, const Expansion& b) {
+  const Expansion& longer = a.size_ >= b.size_ ? a : b;
+  const Expansion& shorter = a.size_ >= b.size_ ? b : a;
+  Expansion r;
+  for (std::size_t i = 0; i < shorter.size_; ++i) r = r + longer.scaled(shorter.terms_[i]);
+  return r;
+}
+
+int Expansion::top_exponent() const {
+  return std::ilogb(terms_[size_ - 1]);
+}
+
+int Expansion::bottom_exponent() const {
+  int exponent = 0;
+  const double mantissa = std::frexp(terms_[0], &exponent);  // 1/2 <= |mantissa| < 1
+  auto bits = static_cast<long long>(std::fabs(std::ldexp(mantissa, 53)));
+  int lowest = exponent - 53;
+  for (; (bits & 1) == 0; bits >>= 1) ++lowest;
+  return lowest;
+}
+
+Expansion Expansion::times_power_of_two(int k) const {
+  Expansion r = *this;
+  for (std::size_t i = 0; i < size_; ++i) r.terms_[i] = std::ldexp(terms_[i], k);
+  return r;
+}
+
+double Expansion::estimate() const {
+  double s = 0.0;
+  for (std::size_t i = 0; i < size_; ++i) s += terms_[i];
+  return s;
+}
+
+}  // namespace clothcd::ccd::detail

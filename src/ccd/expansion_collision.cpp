@@ -1,0 +1,599 @@
+// The middle tier of the thickness-0 CCD: the exact reference's decision procedure (exact_reference.cpp) with
+// floating-point expansions instead of GMP rationals, for the queries the interval fast path cannot decide (contacts
+// exactly at t = 0 or 1, touching or missing by a rounding error at the coplanarity instant, motion coplanar for the
+// whole step, ...).
+//
+// Same question: is the origin in conv W(t) at a root t of D(t) = det(x1 - x0, x2 - x0, x3 - x0)? All polynomials
+// (D, and the 2D cross and dot products of W in the three axis projections) get exact expansion coefficients. The
+// coordinates are first scaled by a power of two (no sign changes) below 1 in magnitude; when they then lie on the
+// dyadic grid 2^-180 and every time used lies on the grid 2^-150, every exact intermediate value (at most degree 3
+// in coordinates and times) is a multiple of 2^-990, so no expansion operation underflows and all signs are exact.
+// Higher-degree values (below) are range-checked first.
+//   - Roots of D in [0, 1]: Bernstein subdivision on grid times with exact signs; a piece whose Bernstein
+//     coefficients have no sign variation has no root, one variation with non-zero ends brackets exactly one
+//     (simple) root; a grid time where D is exactly zero is itself a candidate.
+//   - The sign of a polynomial P at a bracketed root t*: P's Bernstein coefficients on the bracket of one strict sign
+//     give it; otherwise the bracket shrinks (secant guess, then the exact signs of D on both sides of the guess).
+//     When P may vanish at t* (touching exactly), t* is written as a rational r = num / den (the root of D when D is
+//     linear, of P when P is linear, else of the pseudo-remainder of D by P) and P(r), D(r), r's place in the bracket
+//     are evaluated exactly in homogeneous form, after scaling num, den and the coefficients by powers of two.
+//   - D identically zero (coplanar for the whole step): candidates are 0, 1 and every root of every sign polynomial.
+// The predicate at each candidate is the reference's. The tier gives up (nullopt) when a sign stays undecided (a
+// multiple root, a shared irrational root of two quadratics), an exact value gets too long or too wide for the
+// double exponent range, or the coordinates span too many orders of magnitude; the caller then runs the GMP
+// reference.
+#include "ccd/expansion_collision.hpp"
+
+#include <array>
+#include <climits>
+#include <cmath>
+#include <initializer_list>
+#include <optional>
+#include <vector>
+
+#include "ccd/expansion.hpp"
+
+namespace clothcd::ccd::detail {
+
+namespace {
+
+constexpr int kMaxSpanBits = 180;      // binary orders of magnitude between the largest and the finest coordinate bit
+constexpr int kTimeBits = 150;         // every time used is a multiple of 2^-150
+constexpr int kMaxIsolationDepth = 48;  // Bernstein subdivision of [0, 1] for the roots of D
+constexpr int kMaxRefinements = 40;     // bracket shrinking steps per sign
+constexpr int kSharedRootAttempt = 4;
+constexpr double kNarrowBracket = 1e-12;  // brackets are shrunk to this width before exact Bernstein signs   // after this many steps, test whether the sign polynomial vanishes at the root
+
+// sum c[i] t^i, degree at most 3.
+struct Poly {
+  std::array<Expansion, 4> c;
+  std::size_t n = 0;  // number of coefficients
+
+  Poly() = default;
+  Poly(std::initializer_list<Expansion> coefficients) {
+    for (const Expansion& e : coefficients) c[n++] = e;
+  }
+  explicit Poly(std::size_t count) : n(count) {
+    if (count > c.size()) throw ExpansionCapacityExceeded();
+  }
+  [[nodiscard]] std::size_t size() const { return n; }
+  [[nodiscard]] bool empty() const { return n == 0; }
+  Expansion& operator[](std::size_t i) { return c[i]; }
+  const Expansion& operator[](std::size_t i) const { return c[i]; }
+};
+
+Poly operator+(const Poly& p, const Poly& q) {
+  Poly r(std::max(p.size(), q.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < p.size()) r[i] = r[i] + p[i];
+    if (i < q.size()) r[i] = r[i] + q[i];
+  }
+  return r;
+}
+
+Poly operator-(const Poly& p, const Poly& q) {
+  Poly r(std::max(p.size(), q.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < p.size()) r[i] = r[i] + p[i];
+    if (i < q.size()) r[i] = r[i] - q[i];
+  }
+  return r;
+}
+
+Poly operator*(const Poly& p, const Poly& q) {
+  if (p.empty() || q.empty()) return {};
+  Poly r(p.size() + q.size() - 1);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = 0; j < q.size(); ++j) r[i + j] = r[i + j] + p[i] * q[j];
+  return r;
+}
+
+int degree(const Poly& p) {
+  for (int i = static_cast<int>(p.size()) - 1; i >= 0; --i)
+    if (!p[static_cast<std::size_t>(i)].is_zero()) return i;
+  return -1;
+}
+
+Expansion evaluate(const Poly& p, const Expansion& t) {
+  Expansion r;
+  for (std::size_t i = p.size(); i-- > 0;) r = r * t + p[i];
+  return r;
+}
+
+// Signs of the Bernstein coefficients (times positive constants) of p, of degree n in 0..3, on [lo, lo + width].
+std::vector<int> bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width) {
+  // Taylor coefficients at lo by repeated synthetic division, then scaled by width^k.
+  Poly a = p;
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j) a[j] = a[j] + lo * a[j + 1];
+  Expansion power = width;
+  for (int k = 1; k <= n; ++k) {
+    a[k] = a[k] * power;
+    if (k < n) power = power * width;
+  }
+  switch (n) {
+    case 0:
+      return {a[0].sign()};
+    case 1:
+      return {a[0].sign(), (a[0] + a[1]).sign()};
+    case 2:
+      return {a[0].sign(), (a[0].scaled(2.0) + a[1]).sign(), (a[0] + a[1] + a[2]).sign()};
+    default:
+      return {a[0].sign(), (a[0].scaled(3.0) + a[1]).sign(), (a[0].scaled(3.0) + a[1].scaled(2.0) + a[2]).sign(),
+              (a[0] + a[1] + a[2] + a[3]).sign()};
+  }
+}
+
+int sign_variations(const std::vector<int>& signs) {
+  int variations = 0, previous = 0;
+  for (int s : signs) {
+    if (s == 0) continue;
+    if (previous != 0 && s != previous) ++variations;
+    previous = s;
+  }
+  return variations;
+}
+
+// base + offset rounded to the time grid.
+Expansion grid_point(const Expansion& base, double offset) {
+  return base + Expansion(std::ldexp(std::nearbyint(std::ldexp(offset, kTimeBits)), -kTimeBits));
+}
+
+bool strictly_between(const Expansion& lo, const Expansion& t, const Expansion& hi) {
+  return (t - lo).sign() > 0 && (hi - t).sign() > 0;
+}
+
+// A candidate time: the grid time lo (point), or the only root of a polynomial (D unless D is identically zero) in
+// the open (lo, hi), with the exact sign sign_lo at lo and the opposite sign at hi (both on the grid).
+struct Candidate {
+  bool point = false;
+  Expansion lo, hi;
+  int sign_lo = 0;
+  const Poly* root_of = nullptr;  // the polynomial whose root is bracketed (D, or a sign polynomial when D == 0)
+  double d_lo = 0.0, d_hi = 0.0;  // estimates of root_of at lo and hi
+  bool bisect_next = false;
+};
+
+Candidate point_at(const Expansion& t) {
+  Candidate c;
+  c.point = true;
+  c.lo = c.hi = t;
+  return c;
+}
+
+// The sign of p (degree n >= 1) at every t in [0, 1] with |t - m| <= distance when plain double arithmetic on the
+// rounded coefficients proves it, else 0: |p(t) - p~(m)| is below the coefficients' and the evaluation's rounding
+// (relative 1e-13 of sum |p_i|) plus the largest slope on [0, 1] times the distance. Sets value to p~(m).
+int filtered_sign(const Poly& p, int n, double m, double distance, double& value) {
+  double magnitude = 0.0, slope = 0.0;
+  value = 0.0;
+  for (int i = n; i >= 0; --i) {
+    const double coefficient = p[static_cast<std::size_t>(i)].estimate();
+    value = value * m + coefficient;
+    magnitude += std::fabs(coefficient);
+    slope += i * std::fabs(coefficient);
+  }
+  const double bound = 1e-13 * magnitude + slope * (1.0 + 1e-13) * distance + 0x1p-1000;
+  return value > bound ? 1 : (value < -bound ? -1 : 0);
+}
+
+// The same at the bracketed root (m the bracket's middle, distance half its width plus the rounding of m).
+int filtered_sign(const Candidate& c, const Poly& p, int n) {
+  const double lo = c.lo.estimate(), hi = c.hi.estimate();
+  const double distance = 0.5 * (hi - lo) * (1.0 + 1e-10) + 1e-15 * (std::fabs(lo) + std::fabs(hi)) + 0x1p-1000;
+  double value;
+  return filtered_sign(p, n, 0.5 * (lo + hi), distance, value);
+}
+
+// Exact sign of p at the grid time t (filtered first), with an estimate of p(t).
+int sign_at_time(const Poly& p, const Expansion& t, double& estimate) {
+  const int n = degree(p);
+  const double m = t.estimate();
+  if (n >= 1) {
+    const int s = filtered_sign(p, n, m, 1e-15 * std::fabs(m) + 0x1p-1000, estimate);
+    if (s != 0) return s;
+  }
+  const Expansion value = evaluate(p, t);
+  estimate = value.estimate();
+  return value.sign();
+}
+
+// Shrinks the bracket (or finds the root on the grid). False when it cannot.
+bool refine(Candidate& c, const Poly& d) {
+  const Expansion width = c.hi - c.lo;
+  const double w = width.estimate();
+  double f = c.d_lo / (c.d_lo - c.d_hi);  // secant guess of the root's position in the bracket
+  if (c.bisect_next || !(f > 0.0 && f < 1.0)) f = 0.5;
+  const double spread = c.bisect_next ? 0.0 : 0x1p-16;
+  const Expansion a = grid_point(c.lo, w * std::max(f - spread, 0.25 * f));
+  const Expansion b = spread == 0.0 ? a : grid_point(c.lo, w * std::min(f + spread, f + 0.75 * (1.0 - f)));
+  if (!strictly_between(c.lo, a, c.hi) || !strictly_between(c.lo, b, c.hi) || (b - a).sign() < 0) {
+    if (c.bisect_next) return false;
+    c.bisect_next = true;
+    return refine(c, d);
+  }
+  double da = 0.0, db = 0.0;
+  const int sa = sign_at_time(d, a, da);
+  if (sa == 0) {
+    c = point_at(a);
+    return true;
+  }
+  const int sb = spread == 0.0 ? sa : sign_at_time(d, b, db);
+  if (spread == 0.0) db = da;
+  if (sb == 0) {
+    c = point_at(b);
+    return true;
+  }
+  if (sa != c.sign_lo) {
+    c.hi = a;
+    c.d_hi = da;
+  } else if (sb != c.sign_lo) {
+    c.lo = a;
+    c.d_lo = da;
+    c.hi = b;
+    c.d_hi = db;
+  } else {
+    c.lo = b;
+    c.d_lo = db;
+  }
+  c.bisect_next = !c.bisect_next && (c.hi - c.lo).estimate() > 0.5 * w;
+  return true;
+}
+
+// Binary exponent range of non-zero expansions.
+struct BitRange {
+  int bottom = INT_MAX, top = INT_MIN;
+  void add(const Expansion& e) {
+    if (e.is_zero()) return;
+    bottom = std::min(bottom, e.bottom_exponent());
+    top = std::max(top, e.top_exponent());
+  }
+  [[nodiscard]] int centring_shift() const { return -(top + bottom) / 2; }
+  [[nodiscard]] int half_width() const { return (top - bottom) / 2 + 2; }
+};
+
+// Exact sign of p at the rational num / den (den != 0): the sign of sum p_i num^i den^(n - i), times sign(den)^n.
+// num and den are scaled by one power of two, and so are p's coefficients, to centre their exponents on 0; nullopt
+// when the products could still leave the double exponent range.
+std::optional<int> sign_at_rational(const Poly& p, Expansion num, Expansion den) {
+  const int n = degree(p);
+  if (n <= 0) return n < 0 ? 0 : p[0].sign();
+  BitRange t_range, p_range;
+  t_range.add(num);
+  t_range.add(den);
+  for (int i = 0; i <= n; ++i) p_range.add(p[static_cast<std::size_t>(i)]);
+  if (n * t_range.half_width() + p_range.half_width() + 8 > 1000) return std::nullopt;
+  num = num.times_power_of_two(t_range.centring_shift());
+  den = den.times_power_of_two(t_range.centring_shift());
+  std::array<Expansion, 4> num_power, den_power;
+  num_power[0] = den_power[0] = Expansion(1.0);
+  for (int i = 1; i <= n; ++i) {
+    num_power[i] = num_power[i - 1] * num;
+    den_power[i] = den_power[i - 1] * den;
+  }
+  Expansion sum;
+  for (int i = 0; i <= n; ++i)
+    sum = sum + p[static_cast<std::size_t>(i)].times_power_of_two(p_range.centring_shift()) * num_power[i] *
+                    den_power[n - i];
+  return n % 2 == 1 && den.sign() < 0 ? -sum.sign() : sum.sign();
+}
+
+// Pseudo-remainder of a by b (degree of b >= 1): lc(b)^k a - q b, of degree below b's; nullopt when the products
+// could leave the double exponent range.
+std::optional<Poly> pseudo_remainder(Poly a, const Poly& b) {
+  const int nb = degree(b);
+  BitRange a_range, b_range;
+  for (std::size_t i = 0; i < a.size(); ++i) a_range.add(a[i]);
+  for (std::size_t i = 0; i < b.size(); ++i) b_range.add(b[i]);
+  const int steps = degree(a) - nb + 1;
+  if (a_range.bottom + steps * b_range.bottom < -1000 || a_range.top + steps * (b_range.top + 2) > 1000)
+    return std::nullopt;
+  for (int na = degree(a); na >= nb; na = degree(a)) {
+    const Expansion lead = a[static_cast<std::size_t>(na)];
+    Poly next(static_cast<std::size_t>(na));
+    for (int i = 0; i < na; ++i) {
+      next[static_cast<std::size_t>(i)] = a[static_cast<std::size_t>(i)] * b[static_cast<std::size_t>(nb)];
+      if (i >= na - nb) next[static_cast<std::size_t>(i)] =
+          next[static_cast<std::size_t>(i)] - lead * b[static_cast<std::size_t>(i - (na - nb))];
+    }
+    a = next;
+  }
+  return a;
+}
+
+// The sign of p at the bracketed root t* of d when p may vanish there (the bracket could not separate them): t* is
+// found as a rational root of d, of p, or of the pseudo-remainder of d by p, and checked exactly.
+std::optional<int> sign_at_shared_root(const Candidate& c, const Poly& p, const Poly& d) {
+  const int np = degree(p), nd = degree(d);
+  if (nd == 1) return sign_at_rational(p, -d[0], d[1]);
+  Expansion num, den;
+  const Poly* check = &d;  // r is a root of *check's partner already; r = t* needs *check(r) == 0 as well
+  if (np == 1) {
+    num = -p[0];
+    den = p[1];
+  } else {
+    const std::optional<Poly> remainder = pseudo_remainder(d, p);
+    if (!remainder) return std::nullopt;
+    const Poly& r = *remainder;
+    const int nr = degree(r);
+    if (nr < 0) {
+      // p divides lc(p)^k d: p's roots in the bracket are roots of d, so t* is p's only possible root there.
+      const int at_lo = evaluate(p, c.lo).sign(), at_hi = evaluate(p, c.hi).sign();
+      return at_lo * at_hi < 0 ? 0 : at_lo;
+    }
+    if (nr != 1) return std::nullopt;
+    num = -r[0];
+    den = r[1];
+    check = &p;  // r(root) = 0 and p(root) = 0 imply d(root) = 0
+  }
+  const std::optional<int> above_lo = sign_at_rational(Poly{-c.lo, Expansion(1.0)}, num, den);
+  const std::optional<int> below_hi = sign_at_rational(Poly{-c.hi, Expansion(1.0)}, num, den);
+  const std::optional<int> vanishes = sign_at_rational(*check, num, den);
+  if (!above_lo || !below_hi || !vanishes || *above_lo <= 0 || *below_hi >= 0 || *vanishes != 0) return std::nullopt;
+  return sign_at_rational(p, num, den);
+}
+
+// Exact sign of p at the candidate, or nullopt when it cannot be decided.
+std::optional<int> sign_at(Candidate& c, const Poly& p) {
+  const int n = degree(p);
+  if (n <= 0) return n < 0 ? 0 : p[0].sign();
+  if (c.point) return evaluate(p, c.lo).sign();
+  const Poly& d = *c.root_of;
+  for (int step = 0; step <= kMaxRefinements; ++step) {
+    if (c.point) return evaluate(p, c.lo).sign();
+    if (const int s = filtered_sign(c, p, n); s != 0) return s;
+    if ((c.hi - c.lo).estimate() > kNarrowBracket && refine(c, d)) continue;  // cheaper than exact signs on it
+    const std::vector<int> signs = bernstein_signs(p, n, c.lo, c.hi - c.lo);
+    bool positive = true, negative = true;
+    for (int s : signs) {
+      positive = positive && s > 0;
+      negative = negative && s < 0;
+    }
+    if (positive) return 1;
+    if (negative) return -1;
+    if (degree(d) == 1 || step == kSharedRootAttempt) {
+      const std::optional<int> shared = sign_at_shared_root(c, p, d);
+      if (shared || degree(d) == 1) return shared;
+    }
+    if (!refine(c, d)) break;
+  }
+  if (c.point) return evaluate(p, c.lo).sign();
+  return sign_at_shared_root(c, p, d);
+}
+
+// Candidates in (lo, hi) in increasing order; D(lo), D(hi) have the exact signs s_lo, s_hi. False on giving up.
+bool isolate(const Poly& d, int n, const Expansion& lo, int s_lo, const Expansion& hi, int s_hi, int depth,
+             std::vector<Candidate>& out) {
+  const Expansion width = hi - lo;
+  const int variations = sign_variations(bernstein_signs(d, n, lo, width));
+  if (variations == 0) return true;
+  if (variations == 1 && s_lo != 0 && s_hi != 0) {
+    Candidate c;
+    c.lo = lo;
+    c.hi = hi;
+    c.sign_lo = s_lo;
+    c.root_of = &d;
+    c.d_lo = evaluate(d, lo).estimate();
+    c.d_hi = evaluate(d, hi).estimate();
+    out.push_back(c);
+    return true;
+  }
+  if (depth >= kMaxIsolationDepth) return false;
+  const Expansion mid = grid_point(lo, 0.5 * width.estimate());
+  if (!strictly_between(lo, mid, hi)) return false;
+  const int s_mid = evaluate(d, mid).sign();
+  if (!isolate(d, n, lo, s_lo, mid, s_mid, depth + 1, out)) return false;
+  if (s_mid == 0) out.push_back(point_at(mid));
+  return isolate(d, n, mid, s_mid, hi, s_hi, depth + 1, out);
+}
+
+// The query's coordinates times one power of two, all below 1 in magnitude and on the grid 2^-kMaxSpanBits.
+std::optional<std::array<std::array<double, 3>, 8>> scaled_coordinates(const CcdQuery& query) {
+  std::array<std::array<double, 3>, 8> c;
+  int top = INT_MIN, bottom = INT_MAX;
+  for (int i = 0; i < 8; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const double x = i < 4 ? query.start[i][k] : query.end[i - 4][k];
+      c[i][k] = x;
+      if (x == 0.0) continue;
+      if (!std::isfinite(x)) return std::nullopt;
+      int exponent = 0;
+      const double mantissa = std::frexp(x, &exponent);  // x = mantissa 2^exponent, 1/2 <= |mantissa| < 1
+      auto bits = static_cast<long long>(std::fabs(std::ldexp(mantissa, 53)));
+      int lowest = exponent - 53;
+      while ((bits & 1) == 0) {
+        bits >>= 1;
+        ++lowest;
+      }
+      top = std::max(top, exponent);
+      bottom = std::min(bottom, lowest);
+    }
+  }
+  if (top == INT_MIN) return c;
+  if (top - bottom > kMaxSpanBits) return std::nullopt;
+  for (auto& point : c)
+    for (double& x : point) x = std::ldexp(x, -top);
+  return c;
+}
+
+using PolyVector = std::array<Poly, 3>;
+
+PolyVector operator-(const PolyVector& a, const PolyVector& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+Poly determinant(const PolyVector& a, const PolyVector& b, const PolyVector& c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+// The sign system: D and, built on first use, the 2D cross and dot products of W in every axis projection.
+class System {
+ public:
+  System(PairKind kind, const std::array<std::array<double, 3>, 8>& c) {
+    std::array<PolyVector, 4> x;
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) x[i][k] = {Expansion(c[i][k]), Expansion::difference(c[i + 4][k], c[i][k])};
+    d_ = determinant(x[1] - x[0], x[2] - x[0], x[3] - x[0]);
+    if (kind == PairKind::VertexFace) {
+      for (int j = 1; j < 4; ++j) w_[points_++] = x[0] - x[j];
+    } else {
+      for (int i = 0; i < 2; ++i)
+        for (int j = 2; j < 4; ++j) w_[points_++] = x[i] - x[j];
+    }
+  }
+  const Poly& d() const { return d_; }
+  int points() const { return points_; }
+  // a < b.
+  const Poly& cross(int k, int a, int b) {
+    std::optional<Poly>& p = cross_[k][a][b];
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    if (!p) p = w_[a][u] * w_[b][v] - w_[a][v] * w_[b][u];
+    return *p;
+  }
+  // a <= b.
+  const Poly& dot(int k, int a, int b) {
+    std::optional<Poly>& p = dot_[k][a][b];
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    if (!p) p = w_[a][u] * w_[b][u] + w_[a][v] * w_[b][v];
+    return *p;
+  }
+
+ private:
+  Poly d_;
+  std::array<PolyVector, 4> w_;
+  int points_ = 0;
+  std::optional<Poly> cross_[3][4][4];
+  std::optional<Poly> dot_[3][4][4];
+};
+
+// The reference's predicate (exact_reference.cpp) at one candidate, with signs computed on first use.
+class Predicate {
+ public:
+  Predicate(System& system, Candidate& candidate) : system_(system), candidate_(candidate) {
+    for (auto& table : {&cross_, &dot_})
+      for (auto& plane : *table)
+        for (auto& row : plane) row.fill(kUnknown);
+  }
+
+  // Whether the origin is in conv W at the candidate; nullopt when a sign could not be decided.
+  std::optional<bool> holds() {
+    bool result = true;
+    for (int k = 0; k < 3 && result; ++k) {
+      bool inside = false;
+      for (int a = 0; a < system_.points() && !inside; ++a)
+        for (int b = a + 1; b < system_.points() && !inside; ++b)
+          for (int c = b + 1; c < system_.points() && !inside; ++c) inside = triangle_contains_origin(k, a, b, c);
+      result = inside;
+    }
+    if (failed_) return std::nullopt;
+    return result;
+  }
+
+ private:
+  int sign_of(int& cached, const Poly& p) {
+    if (cached == kUnknown) {
+      const std::optional<int> s = failed_ ? std::optional<int>(0) : sign_at(candidate_, p);
+      failed_ = failed_ || !s;
+      cached = s.value_or(0);
+    }
+    return cached;
+  }
+  int cross(int k, int a, int b) {
+    if (a > b) return -cross(k, b, a);
+    return sign_of(cross_[k][a][b], system_.cross(k, a, b));
+  }
+  int dot(int k, int a, int b) {
+    if (a > b) std::swap(a, b);
+    return sign_of(dot_[k][a][b], system_.dot(k, a, b));
+  }
+  bool triangle_contains_origin(int k, int a, int b, int c) {
+    const int s[3] = {cross(k, a, b), cross(k, b, c), cross(k, c, a)};
+    const bool has_positive = s[0] > 0 || s[1] > 0 || s[2] > 0;
+    const bool has_negative = s[0] < 0 || s[1] < 0 || s[2] < 0;
+    if (has_positive && has_negative) return false;
+    if (has_positive || has_negative) return true;
+    const int ids[3] = {a, b, c};
+    for (int i : ids)
+      for (int j : ids)
+        if (dot(k, i, j) <= 0) return true;
+    return false;
+  }
+
+  static constexpr int kUnknown = 2;
+  System& system_;
+  Candidate& candidate_;
+  bool failed_ = false;
+  std::array<std::array<std::array<int, 4>, 4>, 3> cross_{};
+  std::array<std::array<std::array<int, 4>, 4>, 3> dot_{};
+};
+
+// The largest double not above t (t in [0, 1]).
+double lower_bound(const Expansion& t) {
+  double value = t.estimate();
+  if ((t - Expansion(value)).sign() < 0) value = std::nextafter(value, 0.0);
+  return std::max(value, 0.0);
+}
+
+// D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
+// closed and its membership changes only at roots of the sign polynomials, so its earliest point (if any) is 0 or
+// such a root: the predicate is tested at t = 0, t = 1 and every root of every non-zero sign polynomial.
+std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
+  const Expansion zero(0.0), one(1.0);
+  std::vector<Candidate> candidates{point_at(zero), point_at(one)};
+  const auto add_roots = [&](const Poly& p) {
+    const int n = degree(p);
+    return n < 1 || isolate(p, n, zero, p[0].sign(), one, evaluate(p, one).sign(), 0, candidates);
+  };
+  for (int k = 0; k < 3; ++k) {
+    for (int a = 0; a < system.points(); ++a) {
+      for (int b = a; b < system.points(); ++b) {
+        if (b > a && !add_roots(system.cross(k, a, b))) return std::nullopt;
+        if (!add_roots(system.dot(k, a, b))) return std::nullopt;
+      }
+    }
+  }
+  exact::ExactAnswer answer;
+  for (Candidate& candidate : candidates) {
+    const std::optional<bool> inside = Predicate(system, candidate).holds();
+    if (!inside) return std::nullopt;
+    if (*inside) {
+      answer.hit = true;
+      answer.toi = std::min(answer.toi, lower_bound(candidate.lo));
+    }
+  }
+  return answer;
+}
+
+std::optional<exact::ExactAnswer> decide(const CcdQuery& query) {
+  const auto coordinates = scaled_coordinates(query);
+  if (!coordinates) return std::nullopt;
+  System system(query.kind, *coordinates);
+  const Poly& d = system.d();
+  const int n = degree(d);
+  std::vector<Candidate> candidates;
+  const Expansion zero(0.0), one(1.0);
+  if (n < 0) return coplanar_for_whole_step(system);
+  const int s0 = d[0].sign();
+  const int s1 = evaluate(d, one).sign();
+  if (s0 == 0) candidates.push_back(point_at(zero));
+  if (n > 0 && !isolate(d, n, zero, s0, one, s1, 0, candidates)) return std::nullopt;
+  if (s1 == 0) candidates.push_back(point_at(one));
+  for (Candidate& candidate : candidates) {
+    const std::optional<bool> inside = Predicate(system, candidate).holds();
+    if (!inside) return std::nullopt;
+    if (*inside) return exact::ExactAnswer{true, lower_bound(candidate.lo)};
+  }
+  return exact::ExactAnswer{};
+}
+
+}  // namespace
+
+std::optional<exact::ExactAnswer> expansion_collision(const CcdQuery& query) {
+  try {
+    return decide(query);
+  } catch (const ExpansionCapacityExceeded&) {
+    return std::nullopt;  // an exact value too long for the inline expansions: the GMP reference decides
+  }
+}
+
+}  // namespace clothcd::ccd::detail

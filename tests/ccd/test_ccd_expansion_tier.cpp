@@ -1,0 +1,178 @@
+// The exact floating-point expansion tier of the thickness-0 CCD (src/ccd/expansion_collision.cpp) against the GMP
+// reference, on seeded random and degenerate queries: whenever the tier answers, it must agree exactly, and on the
+// degenerate families (coplanar for the whole step, touching at t = 0 or 1, integer grids, extreme magnitudes) it must
+// answer most of the time, or it would not take load off the reference.
+#include <gmpxx.h>
+
+#include <cmath>
+#include <random>
+
+#include "ccd/ccd_test_support.hpp"
+#include "ccd/expansion.hpp"
+#include "ccd/expansion_collision.hpp"
+
+using clothcd::PairKind;
+using clothcd::test::make_query;
+using clothcd::test::Vector3d;
+namespace ccd = clothcd::ccd;
+using ccd::detail::Expansion;
+
+namespace {
+
+class Generator {
+ public:
+  explicit Generator(unsigned seed) : random_(seed) {}
+
+  // Small integer coordinates (times `unit`), with the degenerate situations the benchmark's handcrafted queries are
+  // made of: motion in one plane (D identically zero), points that do not move, a contact placed exactly at t = 0 or
+  // t = 1 (vertex on the face or on an edge of it; edge through an endpoint or the middle of the other).
+  ccd::CcdQuery grid_query(PairKind kind, double unit) {
+    ccd::CcdQuery q;
+    q.kind = kind;
+    const int style = pick(4);
+    for (int i = 0; i < 4; ++i) {
+      q.start[i] = grid_vector(unit);
+      q.end[i] = coin() ? q.start[i] : grid_vector(unit);
+      if (style == 0) q.start[i].z() = q.end[i].z() = 0.0;  // coplanar for the whole step
+    }
+    if (style == 1 || style == 2) {
+      auto& at = style == 1 ? q.start : q.end;  // touching exactly at t = 0 or t = 1
+      const double w = 0.5 * pick(3);           // 0, 1/2 or 1: a corner, an edge middle or the far corner
+      if (kind == PairKind::VertexFace) {
+        at[0] = coin() ? Vector3d((1 - w) * at[1] + w * at[2]) : Vector3d((at[1] + at[2] + at[3]) * 0.25 + at[1] * 0.25);
+      } else {
+        at[0] = (1 - w) * at[2] + w * at[3];
+      }
+    }
+    return q;
+  }
+
+  // Continuous coordinates around a contact at a random time, sometimes nudged by a rounding-sized amount.
+  ccd::CcdQuery random_query(PairKind kind) {
+    std::array<Vector3d, 4> contact;
+    for (Vector3d& p : contact) p = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+    const double u = uniform(0, 1), v = uniform(0, 1 - u);
+    if (kind == PairKind::VertexFace) {
+      contact[0] = (1 - u - v) * contact[1] + u * contact[2] + v * contact[3];
+    } else {
+      contact[1] = contact[0] + ((1 - u) * contact[2] + u * contact[3] - contact[0]) * uniform(0.5, 2.0);
+    }
+    const double t = uniform(0, 1);
+    ccd::CcdQuery q;
+    q.kind = kind;
+    for (int i = 0; i < 4; ++i) {
+      const Vector3d velocity{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+      q.start[i] = contact[i] - t * velocity;
+      q.end[i] = q.start[i] + velocity;
+    }
+    if (coin()) q.end[pick(4)][pick(3)] += coin() ? 1e-16 : -1e-16;
+    return q;
+  }
+
+ private:
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random_); }
+  bool coin() { return std::bernoulli_distribution(0.5)(random_); }
+  int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(random_); }
+  Vector3d grid_vector(double unit) {
+    std::uniform_int_distribution<int> step(-3, 3);
+    return Vector3d(step(random_), step(random_), step(random_)) * unit;
+  }
+  std::mt19937 random_;
+};
+
+struct Tally {
+  int queries = 0, answered = 0, hits = 0;
+};
+
+void check_tier(const ccd::CcdQuery& q, Tally& tally) {
+  const bool expected = ccd::exact_collision_reference(q);
+  ++tally.queries;
+  tally.hits += expected ? 1 : 0;
+  INFO("start " << q.start[0].transpose() << " | " << q.start[1].transpose() << " | " << q.start[2].transpose()
+                << " | " << q.start[3].transpose());
+  INFO("end   " << q.end[0].transpose() << " | " << q.end[1].transpose() << " | " << q.end[2].transpose() << " | "
+                << q.end[3].transpose());
+  const auto answer = ccd::detail::expansion_collision(q);
+  if (answer) {
+    ++tally.answered;
+    REQUIRE(answer->hit == expected);
+    if (answer->hit) {
+      CHECK(answer->toi >= 0.0);
+      CHECK(answer->toi <= 1.0);
+    }
+  }
+  CHECK(ccd::continuous_collision(q).hit == expected);
+}
+
+mpq_class exact_value(double x) {
+  return mpq_class(x);
+}
+
+}  // namespace
+
+TEST_CASE("expansion arithmetic is exact", "[ccd][expansion]") {
+  std::mt19937 random(31);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-60, 60);
+  const auto draw = [&] { return std::ldexp(mantissa(random), exponent(random)); };
+  for (int i = 0; i < 2000; ++i) {
+    const double a = draw(), b = draw(), c = draw(), d = draw();
+    const Expansion ea(a), eb(b), ec(c), ed(d);
+    // (a + b)(c - d) - a c + a d - b c + b d is exactly zero.
+    const Expansion zero = (ea + eb) * Expansion::difference(c, d) - ea * ec + ea * ed - eb * ec + eb * ed;
+    CHECK(zero.is_zero());
+    // The sign of a b c - d agrees with GMP, and so does the rounded estimate.
+    const Expansion value = ea * eb * ec - ed;
+    const mpq_class exact = exact_value(a) * exact_value(b) * exact_value(c) - exact_value(d);
+    CHECK(value.sign() == sgn(exact));
+    CHECK(value.estimate() == Approx(exact.get_d()).epsilon(1e-15));
+  }
+}
+
+TEST_CASE("expansion tier agrees with the reference on degenerate grid queries", "[ccd][expansion][differential]") {
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  // Exactly representable units: plain, tiny, huge (beyond the interval path's range) and with a ragged mantissa.
+  const double unit = GENERATE(0.5, 0x1p-600, 0x1p+300, 0.1);
+  Generator generator(kind == PairKind::VertexFace ? 1201u : 1202u);
+  Tally tally;
+  for (int i = 0; i < 250; ++i) check_tier(generator.grid_query(kind, unit), tally);
+  CHECK(tally.hits > tally.queries / 10);
+  // Adversarial grids: shared roots of two quadratic sign polynomials and double roots of D stay with the reference.
+  CHECK(tally.answered > tally.queries * 3 / 4);
+}
+
+TEST_CASE("expansion tier agrees with the reference on random queries", "[ccd][expansion][differential]") {
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  Generator generator(kind == PairKind::VertexFace ? 77001u : 77002u);
+  Tally tally;
+  for (int i = 0; i < 250; ++i) check_tier(generator.random_query(kind), tally);
+  CHECK(tally.hits > tally.queries / 5);
+  CHECK(tally.answered > tally.queries * 9 / 10);
+}
+
+TEST_CASE("expansion tier decides exact touching and whole-step coplanar motion", "[ccd][expansion]") {
+  using V = Vector3d;
+  const V a(0, 0, 0), b(2, 0, 0), c(0, 2, 0);
+  // The vertex comes down onto the middle of the edge ab exactly at t = 1.
+  const auto edge_touch = make_query(PairKind::VertexFace, {V(1, 0, 1), a, b, c}, {V(1, 0, 0), a, b, c});
+  // The vertex slides in the triangle's plane along the line of edge ab, onto it at t = 1/2 and beyond it.
+  const auto sliding = make_query(PairKind::VertexFace, {V(-2, 0, 0), a, b, c}, {V(-1, 0, 0), a, b, c});
+  const auto sliding_in = make_query(PairKind::VertexFace, {V(-2, 0, 0), a, b, c}, {V(2, 0, 0), a, b, c});
+  // Coplanar parallel edges that never meet, and two that overlap along a line at t = 1/2.
+  const auto parallel_miss =
+      make_query(PairKind::EdgeEdge, {V(0, 1, 0), V(1, 1, 0), V(0, 0, 0), V(1, 0, 0)},
+                 {V(0, 0.5, 0), V(1, 0.5, 0), V(0, 0, 0), V(1, 0, 0)});
+  const auto parallel_hit = make_query(PairKind::EdgeEdge, {V(0, 1, 0), V(1, 1, 0), V(0, 0, 0), V(1, 0, 0)},
+                                       {V(0.5, -1, 0), V(1.5, -1, 0), V(0, 0, 0), V(1, 0, 0)});
+  for (const auto& [query, expected] :
+       {std::pair{edge_touch, true}, {sliding, false}, {sliding_in, true}, {parallel_miss, false},
+        {parallel_hit, true}}) {
+    REQUIRE(ccd::exact_collision_reference(query) == expected);
+    const auto answer = ccd::detail::expansion_collision(query);
+    REQUIRE(answer.has_value());
+    CHECK(answer->hit == expected);
+    const ccd::CcdResult result = ccd::continuous_collision(query);
+    CHECK(result.hit == expected);
+    CHECK_FALSE(result.exact_fallback);
+  }
+}
