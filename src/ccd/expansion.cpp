@@ -117,8 +117,42 @@ Expansion Expansion::scaled(double b) const {
 Expansion operator*(const Expansion& a, const Expansion& b) {
   const Expansion& longer = a.size_ >= b.size_ ? a : b;
   const Expansion& shorter = a.size_ >= b.size_ ? b : a;
+  if (shorter.size_ == 0) return Expansion();
+  Expansion r = longer.scaled(shorter.terms_[0]);
+  for (std::size_t i = 1; i < shorter.size_; ++i) {
+    r = r + longer.scaled(shorter.terms_[i]);
+    if (r.size_ > Expansion::kCapacity / 2) r = r.compressed();  // keeps the partial sums within the capacity
+  }
+  return shorter.size_ > 1 ? r.compressed() : r;
+}
+
+Expansion Expansion::compressed() const {
+  // Top-down pass: sums from the largest component, keeping the parts that do not fit; then bottom-up: the same from
+  // the smallest kept part, emitting the errors.
+  if (size_ < 2) return *this;
+  double g[kCapacity];
+  std::size_t bottom = size_ - 1;
+  double q = terms_[bottom];
+  for (std::size_t i = size_ - 1; i-- > 0;) {
+    double sum, rest;
+    fast_two_sum(q, terms_[i], sum, rest);
+    if (rest != 0.0) {
+      g[bottom--] = sum;
+      q = rest;
+    } else {
+      q = sum;
+    }
+  }
+  g[bottom] = q;
   Expansion r;
-  for (std::size_t i = 0; i < shorter.size_; ++i) r = r + longer.scaled(shorter.terms_[i]);
+  q = g[bottom];
+  for (std::size_t i = bottom + 1; i < size_; ++i) {
+    double sum, rest;
+    fast_two_sum(g[i], q, sum, rest);
+    if (rest != 0.0) r.terms_[r.size_++] = rest;
+    q = sum;
+  }
+  if (q != 0.0) r.terms_[r.size_++] = q;
   return r;
 }
 

@@ -51,6 +51,8 @@ class Expansion {
   [[nodiscard]] int bottom_exponent() const;
   /// The value times 2^k (exact while the components stay normal and finite).
   [[nodiscard]] Expansion times_power_of_two(int k) const;
+  /// The same value in usually fewer components (Shewchuk's compression; the result is non-adjacent).
+  [[nodiscard]] Expansion compressed() const;
 
  private:
   void push(double x) {

@@ -17,7 +17,8 @@
 //     When P may vanish at t* (touching exactly), t* is written as a rational r = num / den (the root of D when D is
 //     linear, of P when P is linear, else of the pseudo-remainder of D by P) and P(r), D(r), r's place in the bracket
 //     are evaluated exactly in homogeneous form, after scaling num, den and the coefficients by powers of two.
-//   - D identically zero (coplanar for the whole step): candidates are 0, 1 and every root of every sign polynomial.
+//   - D identically zero (coplanar for the whole step): candidates are 0, 1 and every root of every sign polynomial
+//     (a double root of a quadratic, where bisection cannot bracket, as the exact rational -p1 / (2 p2)).
 // The predicate at each candidate is the reference's. The tier gives up (nullopt) when a sign stays undecided (a
 // multiple root, a shared irrational root of two quadratics), an exact value gets too long or too wide for the
 // double exponent range, or the coordinates span too many orders of magnitude; the caller then runs the GMP
@@ -39,7 +40,7 @@ namespace {
 
 constexpr int kMaxSpanBits = 180;      // binary orders of magnitude between the largest and the finest coordinate bit
 constexpr int kTimeBits = 150;         // every time used is a multiple of 2^-150
-constexpr int kMaxIsolationDepth = 48;  // Bernstein subdivision of [0, 1] for the roots of D
+constexpr int kMaxIsolationDepth = 120;  // Bernstein subdivision of [0, 1] for the roots (close roots need deep pieces)
 constexpr int kMaxRefinements = 40;     // bracket shrinking steps per sign
 constexpr int kSharedRootAttempt = 4;
 constexpr double kNarrowBracket = 1e-12;  // brackets are shrunk to this width before exact Bernstein signs   // after this many steps, test whether the sign polynomial vanishes at the root
@@ -147,6 +148,8 @@ bool strictly_between(const Expansion& lo, const Expansion& t, const Expansion& 
 // the open (lo, hi), with the exact sign sign_lo at lo and the opposite sign at hi (both on the grid).
 struct Candidate {
   bool point = false;
+  bool rational = false;  // the time num / den (den > 0), a double root of a quadratic sign polynomial
+  Expansion num, den;
   Expansion lo, hi;
   int sign_lo = 0;
   const Poly* root_of = nullptr;  // the polynomial whose root is bracketed (D, or a sign polynomial when D == 0)
@@ -337,6 +340,7 @@ std::optional<int> sign_at_shared_root(const Candidate& c, const Poly& p, const 
 std::optional<int> sign_at(Candidate& c, const Poly& p) {
   const int n = degree(p);
   if (n <= 0) return n < 0 ? 0 : p[0].sign();
+  if (c.rational) return sign_at_rational(p, c.num, c.den);
   if (c.point) return evaluate(p, c.lo).sign();
   const Poly& d = *c.root_of;
   for (int step = 0; step <= kMaxRefinements; ++step) {
@@ -534,21 +538,49 @@ double lower_bound(const Expansion& t) {
   return std::max(value, 0.0);
 }
 
+// A double not above the candidate's time (within a few units in the last place).
+double lower_bound(const Candidate& c) {
+  if (!c.rational) return lower_bound(c.lo);
+  double value = c.num.estimate() / c.den.estimate();
+  // value >= 2^-200 keeps the exact product den * value far above the underflow threshold.
+  for (int attempt = 0; attempt < 8 && value >= 0x1p-200; ++attempt, value = std::nextafter(value, 0.0))
+    if ((c.num - c.den.scaled(value)).sign() >= 0) return std::min(value, 1.0);
+  return 0.0;  // always a valid lower bound
+}
+
+// Candidates for the roots of p (degree n >= 1) in [0, 1]: a double root of a quadratic (zero discriminant) is the
+// rational -p1 / (2 p2), which bisection could never bracket; other roots are simple and isolated on the grid.
+bool add_roots(const Poly& p, std::vector<Candidate>& out) {
+  const int n = degree(p);
+  if (n < 1) return true;
+  const Expansion zero(0.0), one(1.0);
+  if (n == 2) {
+    const int discriminant = (p[1] * p[1] - (p[0] * p[2]).scaled(4.0)).sign();
+    if (discriminant < 0) return true;
+    if (discriminant == 0) {
+      Candidate c;
+      c.rational = true;
+      const bool negate = p[2].sign() < 0;
+      c.num = negate ? p[1] : -p[1];
+      c.den = negate ? -p[2].scaled(2.0) : p[2].scaled(2.0);
+      if (c.num.sign() >= 0 && (c.den - c.num).sign() >= 0) out.push_back(c);
+      return true;
+    }
+  }
+  return isolate(p, n, zero, p[0].sign(), one, evaluate(p, one).sign(), 0, out);
+}
+
 // D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
 // closed and its membership changes only at roots of the sign polynomials, so its earliest point (if any) is 0 or
 // such a root: the predicate is tested at t = 0, t = 1 and every root of every non-zero sign polynomial.
 std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
   const Expansion zero(0.0), one(1.0);
   std::vector<Candidate> candidates{point_at(zero), point_at(one)};
-  const auto add_roots = [&](const Poly& p) {
-    const int n = degree(p);
-    return n < 1 || isolate(p, n, zero, p[0].sign(), one, evaluate(p, one).sign(), 0, candidates);
-  };
   for (int k = 0; k < 3; ++k) {
     for (int a = 0; a < system.points(); ++a) {
       for (int b = a; b < system.points(); ++b) {
-        if (b > a && !add_roots(system.cross(k, a, b))) return std::nullopt;
-        if (!add_roots(system.dot(k, a, b))) return std::nullopt;
+        if (b > a && !add_roots(system.cross(k, a, b), candidates)) return std::nullopt;
+        if (!add_roots(system.dot(k, a, b), candidates)) return std::nullopt;
       }
     }
   }
@@ -558,7 +590,7 @@ std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
     if (!inside) return std::nullopt;
     if (*inside) {
       answer.hit = true;
-      answer.toi = std::min(answer.toi, lower_bound(candidate.lo));
+      answer.toi = std::min(answer.toi, lower_bound(candidate));
     }
   }
   return answer;
@@ -581,7 +613,7 @@ std::optional<exact::ExactAnswer> decide(const CcdQuery& query) {
   for (Candidate& candidate : candidates) {
     const std::optional<bool> inside = Predicate(system, candidate).holds();
     if (!inside) return std::nullopt;
-    if (*inside) return exact::ExactAnswer{true, lower_bound(candidate.lo)};
+    if (*inside) return exact::ExactAnswer{true, lower_bound(candidate)};
   }
   return exact::ExactAnswer{};
 }

@@ -129,6 +129,60 @@ TEST_CASE("expansion arithmetic is exact", "[ccd][expansion]") {
   }
 }
 
+TEST_CASE("expansion compression keeps the value and never lengthens it", "[ccd][expansion]") {
+  std::mt19937 random(32);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-200, 200);
+  const auto draw = [&] { return std::ldexp(mantissa(random), exponent(random)); };
+  for (int i = 0; i < 1000; ++i) {
+    Expansion sum;
+    for (int k = 0; k < 12; ++k) sum = sum + Expansion(draw()) * Expansion(draw());
+    const Expansion compact = sum.compressed();
+    CHECK((compact - sum).is_zero());
+    CHECK(compact.sign() == sum.sign());
+    CHECK(compact.estimate() == Approx(sum.estimate()).epsilon(1e-15));
+  }
+}
+
+TEST_CASE("expansion tier decides coplanar motion through a point at a rational time", "[ccd][expansion]") {
+  // Motion in the plane z = 0 (D identically zero) where one difference vector of W passes exactly through the
+  // origin at t = k / q (not on the dyadic grid): its squared length is a quadratic with a double root there, which
+  // bisection cannot bracket. Sometimes nudged by one unit in the last place, which splits the double root into two
+  // roots about 1e-16 apart or none.
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  std::mt19937 random(kind == PairKind::VertexFace ? 4501u : 4502u);
+  std::uniform_int_distribution<int> step(-3, 3), denominator(3, 7), coin(0, 3);
+  const auto grid = [&] { return Vector3d(step(random), step(random), 0.0); };
+  Tally tally;
+  int answered_exact = 0, exact_queries = 0;
+  for (int i = 0; i < 200; ++i) {
+    const int q = denominator(random);
+    const double s = static_cast<double>(std::uniform_int_distribution<int>(1, q - 1)(random)) / q;
+    const Vector3d from = grid(), to = grid();
+    ccd::CcdQuery query;
+    query.kind = kind;
+    for (int j = 0; j < 4; ++j) {
+      query.start[j] = grid();
+      query.end[j] = coin(random) == 0 ? query.start[j] : grid();
+    }
+    // Point 0 moves from `from` to `to`; the static point 2 (a face vertex, or an endpoint of the other edge) lies on
+    // its path at the parameter s (rounded: the exact contact time is the rational that rounding gives).
+    query.start[0] = from;
+    query.end[0] = to;
+    query.start[2] = query.end[2] = from + s * (to - from);
+    const bool nudge = coin(random) == 0;
+    if (nudge) query.end[2].x() = std::nextafter(query.end[2].x(), 10.0);
+    check_tier(query, tally);
+    if (!nudge) {
+      ++exact_queries;
+      answered_exact += ccd::detail::expansion_collision(query) ? 1 : 0;
+    }
+  }
+  CHECK(tally.hits > tally.queries / 10);
+  CHECK(answered_exact > exact_queries * 9 / 10);
+  CHECK(tally.answered > tally.queries * 3 / 4);
+}
+
 TEST_CASE("expansion tier agrees with the reference on degenerate grid queries", "[ccd][expansion][differential]") {
   const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
   // Exactly representable units: plain, tiny, huge (beyond the interval path's range) and with a ragged mantissa.
