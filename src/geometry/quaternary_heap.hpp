@@ -1,40 +1,63 @@
 #pragma once
 // Private: a 4-ary min-heap of small entries. The tree is half as deep as a binary heap and the four children of a node
-// are adjacent (64 bytes for 16-byte entries), so a pop from a large heap touches about half as many cache lines.
+// are adjacent (64 bytes for 16-byte entries) and start on a cache line (the storage is 64-byte aligned and the root
+// sits after three unused slots), so a pop from a large heap touches about half as many cache lines.
 
 #include <cstddef>
+#include <new>
 #include <utility>
 #include <vector>
 
 namespace clothcd::geometry::detail {
+
+/// Allocator of cache-line (64-byte) aligned storage.
+template <typename T>
+struct CacheLineAllocator {
+  using value_type = T;  ///< What is allocated.
+  CacheLineAllocator() = default;
+  /// Rebinding copy.
+  template <typename U>
+  explicit CacheLineAllocator(const CacheLineAllocator<U>& /*other*/) {}
+  /// Room for n objects, 64-byte aligned.
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(64))); }
+  /// Frees what allocate() gave.
+  void deallocate(T* p, std::size_t /*n*/) { ::operator delete(p, std::align_val_t(64)); }
+  /// Any two are interchangeable.
+  template <typename U>
+  bool operator==(const CacheLineAllocator<U>& /*other*/) const { return true; }
+  /// Any two are interchangeable.
+  template <typename U>
+  bool operator!=(const CacheLineAllocator<U>& /*other*/) const { return false; }
+};
 
 /// Min-heap on `Entry::cost` (any type with a `cost` member ordered by `<`), four children per node. Ties pop in an
 /// unspecified order.
 template <typename Entry>
 class QuaternaryHeap {
  public:
+  QuaternaryHeap() : entries_(kRoot) {}
   /// Reserves room for `count` entries.
-  void reserve(std::size_t count) { entries_.reserve(count); }
+  void reserve(std::size_t count) { entries_.reserve(count + kRoot); }
   /// True when no entry is left.
-  [[nodiscard]] bool empty() const { return entries_.empty(); }
+  [[nodiscard]] bool empty() const { return entries_.size() == kRoot; }
   /// Number of entries.
-  [[nodiscard]] std::size_t size() const { return entries_.size(); }
+  [[nodiscard]] std::size_t size() const { return entries_.size() - kRoot; }
 
   /// Adds an entry without restoring the heap order; call heapify() before the next push() or pop().
   void push_unordered(const Entry& e) { entries_.push_back(e); }
 
   /// Restores the heap order over every entry (O(n)).
   void heapify() {
-    if (entries_.size() < 2) return;
-    for (std::size_t i = (entries_.size() - 2) / 4 + 1; i-- > 0;) sift_down(i);
+    if (size() < 2) return;
+    for (std::size_t i = parent(entries_.size() - 1) + 1; i-- > kRoot;) sift_down(i);
   }
 
   /// Drops every entry for which `keep(entry)` is false and restores the heap order (O(n)).
   template <typename Keep>
   void retain_if(Keep keep) {
-    std::size_t kept = 0;
-    for (const Entry& e : entries_)
-      if (keep(e)) entries_[kept++] = e;
+    std::size_t kept = kRoot;
+    for (std::size_t i = kRoot; i < entries_.size(); ++i)
+      if (keep(entries_[i])) entries_[kept++] = entries_[i];
     entries_.resize(kept);
     heapify();
   }
@@ -43,30 +66,34 @@ class QuaternaryHeap {
   void push(const Entry& e) {
     entries_.push_back(e);
     std::size_t i = entries_.size() - 1;
-    while (i > 0) {
-      const std::size_t parent = (i - 1) / 4;
-      if (!(e.cost < entries_[parent].cost)) break;
-      entries_[i] = entries_[parent];
-      i = parent;
+    while (i > kRoot) {
+      const std::size_t up = parent(i);
+      if (!(e.cost < entries_[up].cost)) break;
+      entries_[i] = entries_[up];
+      i = up;
     }
     entries_[i] = e;
   }
 
   /// Removes and returns the entry of least cost. The heap must not be empty.
   Entry pop() {
-    const Entry top = entries_.front();
-    entries_.front() = entries_.back();
+    const Entry top = entries_[kRoot];
+    entries_[kRoot] = entries_.back();
     entries_.pop_back();
-    if (!entries_.empty()) sift_down(0);
+    if (!empty()) sift_down(kRoot);
     return top;
   }
 
  private:
+  // The root's slot: children of slot i are slots 4 i - 8 .. 4 i - 5, so every group of four starts at a multiple of 4.
+  static constexpr std::size_t kRoot = 3;
+  static std::size_t parent(std::size_t i) { return i / 4 + 2; }
+
   void sift_down(std::size_t i) {
     const Entry e = entries_[i];
     const std::size_t n = entries_.size();
     for (;;) {
-      const std::size_t first = 4 * i + 1;
+      const std::size_t first = 4 * i - 8;
       if (first >= n) break;
       std::size_t best = first;
       const std::size_t last = first + 4 < n ? first + 4 : n;
@@ -79,7 +106,7 @@ class QuaternaryHeap {
     entries_[i] = e;
   }
 
-  std::vector<Entry> entries_;
+  std::vector<Entry, CacheLineAllocator<Entry>> entries_;  // slots 0 .. kRoot - 1 unused
 };
 
 }  // namespace clothcd::geometry::detail

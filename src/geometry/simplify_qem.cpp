@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "clothcd/mesh/mesh_validation.hpp"
+#include "list_pool.hpp"
 #include "morton_order.hpp"
 #include "quaternary_heap.hpp"
 
@@ -121,6 +122,11 @@ struct CellHash {
   }
 };
 
+// A face contracted away keeps kDeadFace as its first corner.
+constexpr int kDeadFace = -1;
+// Room for this many more faces than at the start in each vertex's list before the list moves.
+constexpr int kListSlack = 4;
+
 class Simplifier {
  public:
   Simplifier(const TriangleMesh& mesh, const SimplifySettings& settings) : settings_(settings) {
@@ -193,12 +199,10 @@ class Simplifier {
     parent_.resize(n);
     for (size_t i = 0; i < n; ++i) parent_[i] = static_cast<int>(i);
     mark_.assign(n, 0);
-    vertex_faces_.assign(n, {});
   }
 
   void build_faces(const TriangleMesh& mesh) {
     faces_.resize(static_cast<size_t>(mesh.face_count()));
-    face_alive_.assign(faces_.size(), 0);
     // Faces are stored in the order of their least (Morton-numbered) vertex, by a counting sort, for the same cache
     // locality as the vertices; compact() writes them back in the input's order.
     std::vector<int> first_slot(position_.size() + 1, 0);
@@ -220,17 +224,19 @@ class Simplifier {
       faces_[size_t(slot)] = corners(f);
     }
     std::vector<int> valence(position_.size(), 0);
-    for (size_t f = 0; f < faces_.size(); ++f) {
-      const auto& t = faces_[f];
-      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
-      face_alive_[f] = 1;
+    for (auto& t : faces_) {
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+        t[0] = kDeadFace;
+        continue;
+      }
       ++live_faces_;
-      for (int w : faces_[f]) ++valence[size_t(w)];
+      for (int w : t) ++valence[size_t(w)];
     }
-    for (size_t v = 0; v < position_.size(); ++v) vertex_faces_[v].reserve(size_t(valence[v]) + 4);
+    for (int& room : valence) room += kListSlack;
+    vertex_faces_.reset(valence);
     for (size_t f = 0; f < faces_.size(); ++f) {
-      if (!face_alive_[f]) continue;
-      for (int k = 0; k < 3; ++k) vertex_faces_[size_t(faces_[f][size_t(k)])].push_back(int(f));
+      if (!alive(faces_[f])) continue;
+      for (int w : faces_[f]) vertex_faces_.push_back(w, int(f));
     }
   }
 
@@ -240,7 +246,7 @@ class Simplifier {
     edge_faces_.assign(faces_.size(), {0, 0, 0});
     std::vector<int> count(position_.size(), 0);
     for (size_t a = 0; a < position_.size(); ++a) {
-      const auto& around = vertex_faces_[a];
+      const auto around = vertex_faces_[int(a)];
       for (int f : around)
         for (int w : faces_[size_t(f)]) ++count[size_t(w)];
       for (int f : around) {
@@ -257,7 +263,7 @@ class Simplifier {
   void classify_edges() {
     count_edge_faces();
     for (size_t f = 0; f < faces_.size(); ++f) {
-      if (!face_alive_[f]) continue;
+      if (!alive(faces_[f])) continue;
       for (int k = 0; k < 3; ++k) {
         const int a = faces_[f][size_t(k)], b = faces_[f][size_t((k + 1) % 3)];
         const int count = edge_faces_[f][size_t(k)];
@@ -274,7 +280,7 @@ class Simplifier {
   void build_quadrics() {
     quadric_.assign(position_.size(), Quadric{});
     for (size_t f = 0; f < faces_.size(); ++f) {
-      if (!face_alive_[f]) continue;
+      if (!alive(faces_[f])) continue;
       const auto& t = faces_[f];
       const Eigen::Vector3d& p0 = position_[size_t(t[0])];
       const Eigen::Vector3d n = (position_[size_t(t[1])] - p0).cross(position_[size_t(t[2])] - p0);
@@ -303,10 +309,9 @@ class Simplifier {
   }
 
   // The live faces of v, dropping dead ones from its list on the way.
-  std::vector<int>& live_faces_of(int v) {
-    auto& list = vertex_faces_[size_t(v)];
-    list.erase(std::remove_if(list.begin(), list.end(), [this](int f) { return !face_alive_[size_t(f)]; }), list.end());
-    return list;
+  detail::ListPool::View live_faces_of(int v) {
+    vertex_faces_.retain_if(v, [this](int f) { return alive(faces_[size_t(f)]); });
+    return vertex_faces_[v];
   }
 
   void push_pair(int u, int v) {
@@ -319,7 +324,7 @@ class Simplifier {
   void push_edge_pairs() {
     heap_.reserve(faces_.size() * 4);
     for (size_t f = 0; f < faces_.size(); ++f) {
-      if (!face_alive_[f]) continue;
+      if (!alive(faces_[f])) continue;
       for (int k = 0; k < 3; ++k) {
         const int a = faces_[f][size_t(k)], b = faces_[f][size_t((k + 1) % 3)];
         // Each interior edge appears in two faces: take it once, from the face where it runs upwards.
@@ -343,10 +348,10 @@ class Simplifier {
                      static_cast<long long>(std::floor(p.z() / threshold))};
     };
     for (size_t v = 0; v < position_.size(); ++v) {
-      if (!vertex_faces_[v].empty()) grid[cell_of(position_[v])].push_back(int(v));
+      if (!vertex_faces_.empty(int(v))) grid[cell_of(position_[v])].push_back(int(v));
     }
     for (size_t v = 0; v < position_.size(); ++v) {
-      if (vertex_faces_[v].empty()) continue;
+      if (vertex_faces_.empty(int(v))) continue;
       mark_neighbours(int(v), ++epoch_);
       const CellKey c = cell_of(position_[v]);
       for (long long dx = -1; dx <= 1; ++dx)
@@ -373,6 +378,7 @@ class Simplifier {
     }
   }
 
+  [[nodiscard]] static bool alive(const std::array<int, 3>& t) { return t[0] != kDeadFace; }
   [[nodiscard]] static bool has(const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || t[2] == v; }
 
   // Rejects contractions that would change the topology badly or fold the surface (see simplify_qem's contract).
@@ -388,7 +394,7 @@ class Simplifier {
     const unsigned common_mark = ++epoch_;
     mark_neighbours(u, of_u);
     int common = 0;
-    for (int f : vertex_faces_[size_t(v)]) {
+    for (int f : vertex_faces_[v]) {
       for (int w : faces_[size_t(f)]) {
         if (w != v && w != u && mark_[size_t(w)] == of_u) {
           mark_[size_t(w)] = common_mark;
@@ -403,7 +409,7 @@ class Simplifier {
   // The faces of `moving` that survive must keep their orientation, stay non-degenerate and not duplicate a face of
   // `other` (which happens when both apexes of a face are common neighbours, as in a tetrahedron).
   bool faces_stay_valid(int moving, int other, const Eigen::Vector3d& p, unsigned common_mark) {
-    for (int f : vertex_faces_[size_t(moving)]) {
+    for (int f : vertex_faces_[moving]) {
       const auto& t = faces_[size_t(f)];
       if (has(t, other)) continue;
       const int k = t[0] == moving ? 0 : (t[1] == moving ? 1 : 2);
@@ -418,7 +424,7 @@ class Simplifier {
       if (dot <= 0 || dot * dot < settings_.min_normal_cos * settings_.min_normal_cos * before.squaredNorm() * after_norm2)
         return false;
       if (mark_[size_t(a)] == common_mark && mark_[size_t(b)] == common_mark) {
-        for (int g : vertex_faces_[size_t(other)]) {
+        for (int g : vertex_faces_[other]) {
           if (has(faces_[size_t(g)], a) && has(faces_[size_t(g)], b)) return false;
         }
       }
@@ -433,19 +439,20 @@ class Simplifier {
     alive_[size_t(u)] = 0;
     parent_[size_t(u)] = v;
     ++stamp_[size_t(v)];
-    auto& faces_v = vertex_faces_[size_t(v)];
-    for (int f : vertex_faces_[size_t(u)]) {
+    // Room first: the appends below then move no list, so u's entries can be read in place.
+    vertex_faces_.reserve(v, vertex_faces_.size(v) + vertex_faces_.size(u));
+    for (int f : vertex_faces_[u]) {
       auto& t = faces_[size_t(f)];
       if (has(t, v)) {
-        face_alive_[size_t(f)] = 0;
+        t[0] = kDeadFace;
         --live_faces_;
         continue;
       }
       for (int& w : t) w = w == u ? v : w;
-      faces_v.push_back(f);
+      vertex_faces_.push_back(v, f);
     }
-    std::vector<int>().swap(vertex_faces_[size_t(u)]);
-    live_faces_of(v);
+    vertex_faces_.clear(u);
+    const auto faces_v = live_faces_of(v);
     // Gather the neighbours and start loading their quadrics (two cache lines each, mostly cold) before costing any
     // pair, so the loads overlap instead of stalling one push after another.
     const unsigned pushed = ++epoch_;
@@ -495,7 +502,7 @@ class Simplifier {
     int vertex_count = 0;
     int face_count = 0;
     for (int f : internal_face_) {
-      if (!face_alive_[size_t(f)]) continue;
+      if (!alive(faces_[size_t(f)])) continue;
       ++face_count;
       for (int w : faces_[size_t(f)]) {
         if (new_index[size_t(w)] < 0) new_index[size_t(w)] = vertex_count++;
@@ -509,7 +516,7 @@ class Simplifier {
     }
     int row = 0;
     for (int f : internal_face_) {
-      if (!face_alive_[size_t(f)]) continue;
+      if (!alive(faces_[size_t(f)])) continue;
       for (int k = 0; k < 3; ++k) out.faces(row, k) = new_index[size_t(faces_[size_t(f)][size_t(k)])];
       ++row;
     }
@@ -525,12 +532,13 @@ class Simplifier {
   std::vector<std::array<int, 3>> faces_;
   std::vector<int> internal_face_;  // input face -> its index here (ordered by least vertex)
   std::vector<std::array<int, 3>> edge_faces_;  // live faces per face edge, at the start (count_edge_faces)
-  std::vector<char> face_alive_, alive_, locked_, boundary_;
+  std::vector<char> alive_, locked_, boundary_;
   std::vector<unsigned> stamp_, mark_;
   unsigned epoch_ = 0;
   std::vector<int> parent_;
   std::vector<int> neighbours_;  // scratch of contract()
-  std::vector<std::vector<int>> vertex_faces_, partners_;
+  detail::ListPool vertex_faces_;  // faces at each vertex; dead ones linger until live_faces_of() drops them
+  std::vector<std::vector<int>> partners_;
   std::vector<std::array<int, 3>> boundary_edges_;  // a, b, face
   detail::QuaternaryHeap<Candidate> heap_;
   int live_faces_ = 0;
