@@ -3,6 +3,7 @@
 // are adjacent (64 bytes for 16-byte entries) and start on a cache line (the storage is 64-byte aligned and the root
 // sits after three unused slots), so a pop from a large heap touches about half as many cache lines.
 
+#include <algorithm>
 #include <cstddef>
 #include <new>
 #include <utility>
@@ -75,6 +76,9 @@ class QuaternaryHeap {
     entries_[i] = e;
   }
 
+  /// The entry of least cost. The heap must not be empty.
+  [[nodiscard]] const Entry& top() const { return entries_[kRoot]; }
+
   /// Removes and returns the entry of least cost. The heap must not be empty.
   Entry pop() {
     const Entry top = entries_[kRoot];
@@ -87,6 +91,7 @@ class QuaternaryHeap {
  private:
   // The root's slot: children of slot i are slots 4 i - 8 .. 4 i - 5, so every group of four starts at a multiple of 4.
   static constexpr std::size_t kRoot = 3;
+  static constexpr std::size_t kPerLine = sizeof(Entry) < 64 ? 64 / sizeof(Entry) : 1;  // entries per cache line
   static std::size_t parent(std::size_t i) { return i / 4 + 2; }
 
   void sift_down(std::size_t i) {
@@ -95,6 +100,10 @@ class QuaternaryHeap {
     for (;;) {
       const std::size_t first = 4 * i - 8;
       if (first >= n) break;
+      // The children's children are the 16 slots from 4 first - 8: start loading them while these are compared.
+      const std::size_t below = 4 * first - 8;
+      const std::size_t count = below < n ? std::min<std::size_t>(16, n - below) : 0;
+      for (std::size_t k = 0; k < count; k += kPerLine) __builtin_prefetch(&entries_[below + k]);
       std::size_t best = first;
       const std::size_t last = first + 4 < n ? first + 4 : n;
       for (std::size_t c = first + 1; c < last; ++c)

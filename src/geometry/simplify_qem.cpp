@@ -153,12 +153,18 @@ class Simplifier {
       }
       const Candidate c = heap_.pop();
       if (!is_current(c)) continue;
+      // Cache misses dominate: start loading what the next candidate will read while this one is handled.
+      if (!heap_.empty()) prefetch_vertices(heap_.top());
       const Quadric q = sum(quadric_[c.u], quadric_[c.v]);
       const Placement placement = place(q, position_[c.u], position_[c.v]);
       const double error = q.area > 0 ? std::sqrt(placement.cost / q.area) : 0.0;
       if (bound >= 0 && error > bound) continue;
       if (!contraction_is_valid(c.u, c.v, placement.position)) continue;
       contract(c.u, c.v, placement.position, q);
+      if (!heap_.empty()) {
+        vertex_faces_.prefetch_entries(heap_.top().u);
+        vertex_faces_.prefetch_entries(heap_.top().v);
+      }
       result.max_error = std::max(result.max_error, error * scale_);
       ++result.contractions;
     }
@@ -170,6 +176,16 @@ class Simplifier {
   }
 
  private:
+  void prefetch_vertices(const Candidate& c) const {
+    for (int w : {c.u, c.v}) {
+      const char* bytes = reinterpret_cast<const char*>(&quadric_[size_t(w)]);
+      __builtin_prefetch(bytes);
+      __builtin_prefetch(bytes + sizeof(Quadric) - 1);
+      __builtin_prefetch(&position_[size_t(w)]);
+      vertex_faces_.prefetch_place(w);
+    }
+  }
+
   // False for a heap entry whose vertices were contracted away or changed since it was pushed.
   [[nodiscard]] bool is_current(const Candidate& c) const {
     return alive_[size_t(c.u)] && alive_[size_t(c.v)] && std::uint16_t(stamp_[size_t(c.u)]) == c.stamp_u &&
