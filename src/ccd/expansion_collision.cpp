@@ -27,12 +27,14 @@
 
 #include <array>
 #include <climits>
+#include <deque>
 #include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <vector>
 
 #include "ccd/expansion.hpp"
+#include "ccd/interval.hpp"
 
 namespace clothcd::ccd::detail {
 
@@ -101,8 +103,60 @@ Expansion evaluate(const Poly& p, const Expansion& t) {
   return r;
 }
 
+// Signs of the n + 1 Bernstein coefficients of a polynomial of degree n (at most 3) on a piece.
+struct BernsteinSigns {
+  std::array<int, 4> sign{};
+  int count = 0;
+};
+
+// An enclosure of e: its rounded sum is within 2^-44 of its value for up to 64 non-overlapping components.
+Interval enclose(const Expansion& e) {
+  const double value = e.estimate();
+  const double radius = std::fabs(value) * 0x1p-40;
+  return {value - radius, value + radius};
+}
+
+// The Bernstein signs from outward-rounded interval arithmetic on enclosures of the coefficients; false unless every
+// sign is certain (then the exact computation is skipped).
+bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width,
+                              BernsteinSigns& out) {
+  std::array<Interval, 4> a;
+  for (int i = 0; i <= n; ++i) a[static_cast<std::size_t>(i)] = enclose(p[static_cast<std::size_t>(i)]);
+  const Interval l = enclose(lo), w = enclose(width);
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j) a[j] = a[j] + l * a[j + 1];
+  Interval power = w;
+  for (int k = 1; k <= n; ++k) {
+    a[k] = a[k] * power;
+    if (k < n) power = power * w;
+  }
+  const Interval two = exact(2.0), three = exact(3.0);
+  out.count = n + 1;
+  std::array<Interval, 4> b;
+  switch (n) {
+    case 0:
+      b = {a[0]};
+      break;
+    case 1:
+      b = {a[0], a[0] + a[1]};
+      break;
+    case 2:
+      b = {a[0], two * a[0] + a[1], a[0] + a[1] + a[2]};
+      break;
+    default:
+      b = {a[0], three * a[0] + a[1], three * a[0] + two * a[1] + a[2], a[0] + a[1] + a[2] + a[3]};
+  }
+  for (int i = 0; i <= n; ++i) {
+    out.sign[static_cast<std::size_t>(i)] = certain_sign(b[static_cast<std::size_t>(i)]);
+    if (out.sign[static_cast<std::size_t>(i)] == 0) return false;
+  }
+  return true;
+}
+
 // Signs of the Bernstein coefficients (times positive constants) of p, of degree n in 0..3, on [lo, lo + width].
-std::vector<int> bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width) {
+BernsteinSigns bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width) {
+  BernsteinSigns out;
+  if (n >= 1 && filtered_bernstein_signs(p, n, lo, width, out)) return out;
   // Taylor coefficients at lo by repeated synthetic division, then scaled by width^k.
   Poly a = p;
   for (int i = 0; i < n; ++i)
@@ -112,22 +166,28 @@ std::vector<int> bernstein_signs(const Poly& p, int n, const Expansion& lo, cons
     a[k] = a[k] * power;
     if (k < n) power = power * width;
   }
+  out.count = n + 1;
   switch (n) {
     case 0:
-      return {a[0].sign()};
+      out.sign = {a[0].sign()};
+      break;
     case 1:
-      return {a[0].sign(), (a[0] + a[1]).sign()};
+      out.sign = {a[0].sign(), (a[0] + a[1]).sign()};
+      break;
     case 2:
-      return {a[0].sign(), (a[0].scaled(2.0) + a[1]).sign(), (a[0] + a[1] + a[2]).sign()};
+      out.sign = {a[0].sign(), (a[0].scaled(2.0) + a[1]).sign(), (a[0] + a[1] + a[2]).sign()};
+      break;
     default:
-      return {a[0].sign(), (a[0].scaled(3.0) + a[1]).sign(), (a[0].scaled(3.0) + a[1].scaled(2.0) + a[2]).sign(),
-              (a[0] + a[1] + a[2] + a[3]).sign()};
+      out.sign = {a[0].sign(), (a[0].scaled(3.0) + a[1]).sign(),
+                  (a[0].scaled(3.0) + a[1].scaled(2.0) + a[2]).sign(), (a[0] + a[1] + a[2] + a[3]).sign()};
   }
+  return out;
 }
 
-int sign_variations(const std::vector<int>& signs) {
+int sign_variations(const BernsteinSigns& signs) {
   int variations = 0, previous = 0;
-  for (int s : signs) {
+  for (int i = 0; i < signs.count; ++i) {
+    const int s = signs.sign[static_cast<std::size_t>(i)];
     if (s == 0) continue;
     if (previous != 0 && s != previous) ++variations;
     previous = s;
@@ -341,15 +401,17 @@ std::optional<int> sign_at(Candidate& c, const Poly& p) {
   const int n = degree(p);
   if (n <= 0) return n < 0 ? 0 : p[0].sign();
   if (c.rational) return sign_at_rational(p, c.num, c.den);
-  if (c.point) return evaluate(p, c.lo).sign();
+  double estimate = 0.0;
+  if (c.point) return sign_at_time(p, c.lo, estimate);
   const Poly& d = *c.root_of;
   for (int step = 0; step <= kMaxRefinements; ++step) {
-    if (c.point) return evaluate(p, c.lo).sign();
+    if (c.point) return sign_at_time(p, c.lo, estimate);
     if (const int s = filtered_sign(c, p, n); s != 0) return s;
     if ((c.hi - c.lo).estimate() > kNarrowBracket && refine(c, d)) continue;  // cheaper than exact signs on it
-    const std::vector<int> signs = bernstein_signs(p, n, c.lo, c.hi - c.lo);
+    const BernsteinSigns signs = bernstein_signs(p, n, c.lo, c.hi - c.lo);
     bool positive = true, negative = true;
-    for (int s : signs) {
+    for (int i = 0; i < signs.count; ++i) {
+      const int s = signs.sign[static_cast<std::size_t>(i)];
       positive = positive && s > 0;
       negative = negative && s < 0;
     }
@@ -361,7 +423,7 @@ std::optional<int> sign_at(Candidate& c, const Poly& p) {
     }
     if (!refine(c, d)) break;
   }
-  if (c.point) return evaluate(p, c.lo).sign();
+  if (c.point) return sign_at_time(p, c.lo, estimate);
   return sign_at_shared_root(c, p, d);
 }
 
@@ -377,15 +439,16 @@ bool isolate(const Poly& d, int n, const Expansion& lo, int s_lo, const Expansio
     c.hi = hi;
     c.sign_lo = s_lo;
     c.root_of = &d;
-    c.d_lo = evaluate(d, lo).estimate();
-    c.d_hi = evaluate(d, hi).estimate();
+    sign_at_time(d, lo, c.d_lo);  // estimates of the right sign (filtered, else exact)
+    sign_at_time(d, hi, c.d_hi);
     out.push_back(c);
     return true;
   }
   if (depth >= kMaxIsolationDepth) return false;
   const Expansion mid = grid_point(lo, 0.5 * width.estimate());
   if (!strictly_between(lo, mid, hi)) return false;
-  const int s_mid = evaluate(d, mid).sign();
+  double estimate = 0.0;
+  const int s_mid = sign_at_time(d, mid, estimate);
   if (!isolate(d, n, lo, s_lo, mid, s_mid, depth + 1, out)) return false;
   if (s_mid == 0) out.push_back(point_at(mid));
   return isolate(d, n, mid, s_mid, hi, s_hi, depth + 1, out);
@@ -449,16 +512,16 @@ class System {
   int points() const { return points_; }
   // a < b.
   const Poly& cross(int k, int a, int b) {
-    std::optional<Poly>& p = cross_[k][a][b];
+    const Poly*& p = cross_[k][a][b];
     const int u = (k + 1) % 3, v = (k + 2) % 3;
-    if (!p) p = w_[a][u] * w_[b][v] - w_[a][v] * w_[b][u];
+    if (!p) p = &store_.emplace_back(w_[a][u] * w_[b][v] - w_[a][v] * w_[b][u]);
     return *p;
   }
   // a <= b.
   const Poly& dot(int k, int a, int b) {
-    std::optional<Poly>& p = dot_[k][a][b];
+    const Poly*& p = dot_[k][a][b];
     const int u = (k + 1) % 3, v = (k + 2) % 3;
-    if (!p) p = w_[a][u] * w_[b][u] + w_[a][v] * w_[b][v];
+    if (!p) p = &store_.emplace_back(w_[a][u] * w_[b][u] + w_[a][v] * w_[b][v]);
     return *p;
   }
 
@@ -466,8 +529,9 @@ class System {
   Poly d_;
   std::array<PolyVector, 4> w_;
   int points_ = 0;
-  std::optional<Poly> cross_[3][4][4];
-  std::optional<Poly> dot_[3][4][4];
+  std::deque<Poly> store_;  // the polynomials built so far (a deque: their addresses stay valid)
+  const Poly* cross_[3][4][4] = {};
+  const Poly* dot_[3][4][4] = {};
 };
 
 // The reference's predicate (exact_reference.cpp) at one candidate, with signs computed on first use.
@@ -567,7 +631,8 @@ bool add_roots(const Poly& p, std::vector<Candidate>& out) {
       return true;
     }
   }
-  return isolate(p, n, zero, p[0].sign(), one, evaluate(p, one).sign(), 0, out);
+  double estimate = 0.0;
+  return isolate(p, n, zero, p[0].sign(), one, sign_at_time(p, one, estimate), 0, out);
 }
 
 // D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
@@ -606,7 +671,8 @@ std::optional<exact::ExactAnswer> decide(const CcdQuery& query) {
   const Expansion zero(0.0), one(1.0);
   if (n < 0) return coplanar_for_whole_step(system);
   const int s0 = d[0].sign();
-  const int s1 = evaluate(d, one).sign();
+  double estimate = 0.0;
+  const int s1 = sign_at_time(d, one, estimate);
   if (s0 == 0) candidates.push_back(point_at(zero));
   if (n > 0 && !isolate(d, n, zero, s0, one, s1, 0, candidates)) return std::nullopt;
   if (s1 == 0) candidates.push_back(point_at(one));
