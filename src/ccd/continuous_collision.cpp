@@ -188,19 +188,26 @@ struct Search {
 };
 
 // Lower bound of the first root of D in [t0, t1]: the start of the first sub-piece where D is not certainly non-zero.
-double first_root_lower_bound(const Search& search, double t0, double t1, const Positions& x0, const Positions& x1) {
-  Positions lo = x0;
-  Positions hi = x1;
+// The sub-pieces' Bernstein coefficients come from the piece's by de Casteljau halving in interval arithmetic (a
+// positive combination, so the enclosures stay rigorous), without recomputing positions. bernstein_of_d's middle
+// coefficients carry the binomial factor 3, so the ends are tripled: the four are 3 times the Bernstein coefficients.
+double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4>& of_piece) {
+  const Interval half = detail::exact(0.5), three = detail::exact(3.0);
+  std::array<Interval, 4> b{three * of_piece[0], of_piece[1], of_piece[2], three * of_piece[3]};
   for (int i = 0; i < kToiBisections; ++i) {
     const double mid = 0.5 * (t0 + t1);
     if (!(mid > t0 && mid < t1)) break;
-    const Positions xm = positions_at(search.query, mid);
-    if (common_strict_sign(bernstein_of_d(lo, xm)) != 0) {
+    const Interval b01 = half * (b[0] + b[1]), b12 = half * (b[1] + b[2]), b23 = half * (b[2] + b[3]);
+    const Interval b012 = half * (b01 + b12), b123 = half * (b12 + b23);
+    const Interval b0123 = half * (b012 + b123);
+    const std::array<Interval, 4> left{b[0], b01, b012, b0123};
+    const std::array<Interval, 4> right{b0123, b123, b23, b[3]};
+    if (common_strict_sign(left) != 0) {
       t0 = mid;
-      lo = xm;
+      b = right;
     } else {
       t1 = mid;
-      hi = xm;
+      b = left;
     }
   }
   return t0;
@@ -222,7 +229,7 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
   const int sign_start = certain_sign(bernstein[0]);
   const int sign_end = certain_sign(bernstein[3]);
   if (verdict.one_inside && sign_start != 0 && sign_end == -sign_start) {
-    search.toi = first_root_lower_bound(search, t0, t1, x0, x1);
+    search.toi = first_root_lower_bound(t0, t1, bernstein);
     return PieceOutcome::Hit;
   }
   const double mid = 0.5 * (t0 + t1);

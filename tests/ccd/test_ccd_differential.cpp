@@ -4,6 +4,7 @@
 #include <random>
 
 #include "ccd/ccd_test_support.hpp"
+#include "ccd/exact_reference.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;
@@ -124,6 +125,31 @@ TEST_CASE("random queries: fast CCD and filters never miss a reference collision
   // The generator must produce a meaningful share of both answers, or the test proves nothing.
   CHECK(tally.reference_hits > tally.queries / 5);
   CHECK(tally.reference_hits < tally.queries * 4 / 5);
+}
+
+TEST_CASE("the time of impact is a lower bound of the earliest contact", "[ccd][differential]") {
+  // The motion over [0, below], below the double just under toi, must be collision-free by the exact reference (the
+  // end positions start + below (end - start) taken exactly as rationals).
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 8101u : 8102u);
+  int checked = 0;
+  for (int i = 0; i < 300; ++i) {
+    const ccd::CcdQuery query = generator.random_query(kind);
+    const ccd::CcdResult result = ccd::continuous_collision(query);
+    if (!result.hit || !(result.toi > 0.0)) continue;
+    ++checked;
+    const mpq_class below(std::nextafter(result.toi, 0.0));
+    ccd::exact::RationalPoints points;
+    for (int p = 0; p < 4; ++p) {
+      for (int d = 0; d < 3; ++d) {
+        points[p][d] = mpq_class(query.start[p][d]);
+        points[p + 4][d] = points[p][d] + below * (mpq_class(query.end[p][d]) - points[p][d]);
+      }
+    }
+    INFO("query " << i << " toi " << result.toi);
+    CHECK_FALSE(ccd::exact::exact_collision(kind, points).hit);
+  }
+  CHECK(checked > 50);
 }
 
 TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference collision", "[ccd][differential]") {
