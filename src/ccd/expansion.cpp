@@ -45,6 +45,40 @@ inline void two_product(double a, double b, double& x, double& y) {
   y = a_lo * b_lo - error3;
 }
 
+// Shewchuk's compression of the non-overlapping terms in[0..n) into out (n doubles of room, may alias in): the same
+// value, non-adjacent, usually far fewer terms. Returns the number of terms written.
+std::size_t compress_terms(const double* in, std::size_t n, double* out) {
+  if (n < 2) {
+    if (n == 1) out[0] = in[0];
+    return n;
+  }
+  // Top-down pass: sums from the largest term, keeping the parts that do not fit; then bottom-up: the same from the
+  // smallest kept part, emitting the errors.
+  double g[2 * Expansion::kCapacity];
+  std::size_t bottom = n - 1;
+  double q = in[bottom];
+  for (std::size_t i = n - 1; i-- > 0;) {
+    double sum, rest;
+    fast_two_sum(q, in[i], sum, rest);
+    if (rest != 0.0) {
+      g[bottom--] = sum;
+      q = rest;
+    } else {
+      q = sum;
+    }
+  }
+  g[bottom] = q;
+  std::size_t count = 0;
+  for (std::size_t i = bottom + 1; i < n; ++i) {
+    double sum, rest;
+    fast_two_sum(g[i], q, sum, rest);
+    if (rest != 0.0) out[count++] = rest;
+    q = sum;
+  }
+  if (q != 0.0) out[count++] = q;
+  return count;
+}
+
 }  // namespace
 
 void sum_into(const Expansion& e, const Expansion& f, Expansion& h) {
@@ -57,14 +91,20 @@ void sum_into(const Expansion& e, const Expansion& f, Expansion& h) {
   const auto by_magnitude = [](double a, double b) { return std::fabs(a) < std::fabs(b); };
   const std::size_t count = e.size_ + f.size_;
   std::merge(e.terms_, e.terms_ + e.size_, f.terms_, f.terms_ + f.size_, merged, by_magnitude);
+  // The chain of two-sums writes its output over the merged terms already consumed (index kept <= i).
+  std::size_t written = 0;
   double q = merged[0];
   for (std::size_t i = 1; i < count; ++i) {
     double q_new, rest;
     two_sum(q, merged[i], q_new, rest);
-    if (rest != 0.0) h.push(rest);
+    if (rest != 0.0) merged[written++] = rest;
     q = q_new;
   }
-  if (q != 0.0) h.push(q);
+  if (q != 0.0) merged[written++] = q;
+  if (written > Expansion::kCapacity) written = compress_terms(merged, written, merged);
+  if (written > Expansion::kCapacity) throw ExpansionCapacityExceeded();
+  for (std::size_t i = 0; i < written; ++i) h.terms_[i] = merged[i];
+  h.size_ = written;
 }
 
 Expansion::Expansion(double x) {
@@ -127,32 +167,8 @@ Expansion operator*(const Expansion& a, const Expansion& b) {
 }
 
 Expansion Expansion::compressed() const {
-  // Top-down pass: sums from the largest component, keeping the parts that do not fit; then bottom-up: the same from
-  // the smallest kept part, emitting the errors.
-  if (size_ < 2) return *this;
-  double g[kCapacity];
-  std::size_t bottom = size_ - 1;
-  double q = terms_[bottom];
-  for (std::size_t i = size_ - 1; i-- > 0;) {
-    double sum, rest;
-    fast_two_sum(q, terms_[i], sum, rest);
-    if (rest != 0.0) {
-      g[bottom--] = sum;
-      q = rest;
-    } else {
-      q = sum;
-    }
-  }
-  g[bottom] = q;
   Expansion r;
-  q = g[bottom];
-  for (std::size_t i = bottom + 1; i < size_; ++i) {
-    double sum, rest;
-    fast_two_sum(g[i], q, sum, rest);
-    if (rest != 0.0) r.terms_[r.size_++] = rest;
-    q = sum;
-  }
-  if (q != 0.0) r.terms_[r.size_++] = q;
+  r.size_ = compress_terms(terms_, size_, r.terms_);
   return r;
 }
 

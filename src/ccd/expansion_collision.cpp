@@ -341,9 +341,13 @@ std::optional<int> sign_at_rational(const Poly& p, Expansion num, Expansion den)
   return n % 2 == 1 && den.sign() < 0 ? -sum.sign() : sum.sign();
 }
 
-// Pseudo-remainder of a by b (degree of b >= 1): lc(b)^k a - q b, of degree below b's; nullopt when the products
-// could leave the double exponent range.
-std::optional<Poly> pseudo_remainder(Poly a, const Poly& b) {
+// Pseudo-division of a by b (degree of b >= 1): lc(b)^k a = q b + r with r of degree below b's; nullopt when the
+// products could leave the double exponent range.
+struct PseudoDivision {
+  Poly quotient, remainder;
+};
+
+std::optional<PseudoDivision> pseudo_divide(Poly a, const Poly& b) {
   const int nb = degree(b);
   BitRange a_range, b_range;
   for (std::size_t i = 0; i < a.size(); ++i) a_range.add(a[i]);
@@ -351,49 +355,63 @@ std::optional<Poly> pseudo_remainder(Poly a, const Poly& b) {
   const int steps = degree(a) - nb + 1;
   if (a_range.bottom + steps * b_range.bottom < -1000 || a_range.top + steps * (b_range.top + 2) > 1000)
     return std::nullopt;
+  const Expansion& lead_b = b[static_cast<std::size_t>(nb)];
+  Poly q(static_cast<std::size_t>(std::max(degree(a) - nb + 1, 1)));
   for (int na = degree(a); na >= nb; na = degree(a)) {
     const Expansion lead = a[static_cast<std::size_t>(na)];
     Poly next(static_cast<std::size_t>(na));
     for (int i = 0; i < na; ++i) {
-      next[static_cast<std::size_t>(i)] = a[static_cast<std::size_t>(i)] * b[static_cast<std::size_t>(nb)];
+      next[static_cast<std::size_t>(i)] = a[static_cast<std::size_t>(i)] * lead_b;
       if (i >= na - nb) next[static_cast<std::size_t>(i)] =
           next[static_cast<std::size_t>(i)] - lead * b[static_cast<std::size_t>(i - (na - nb))];
     }
     a = next;
+    // lc(b)^(k+1) a0 = (lc(b) q + lead x^(na - nb)) b + next.
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] = q[i] * lead_b;
+    q[static_cast<std::size_t>(na - nb)] = q[static_cast<std::size_t>(na - nb)] + lead;
   }
-  return a;
+  return PseudoDivision{q, a};
 }
 
-// The sign of p at the bracketed root t* of d when p may vanish there (the bracket could not separate them): t* is
-// found as a rational root of d, of p, or of the pseudo-remainder of d by p, and checked exactly.
+// Exact sign of l (degree at most 1) at the root t* of d bracketed by the candidate: l's root rho = num / den is
+// placed against the bracket, and inside it against t* by the exact sign of d at rho.
+std::optional<int> linear_sign_at_root(const Candidate& c, const Poly& l, const Poly& d) {
+  const int n = degree(l);
+  if (n <= 0) return n < 0 ? 0 : l[0].sign();
+  const Expansion num = -l[0], den = l[1];
+  const int slope = l[1].sign();
+  const std::optional<int> above_lo = sign_at_rational(Poly{-c.lo, Expansion(1.0)}, num, den);
+  if (!above_lo) return std::nullopt;
+  if (*above_lo <= 0) return slope;  // rho <= lo < t*
+  const std::optional<int> below_hi = sign_at_rational(Poly{-c.hi, Expansion(1.0)}, num, den);
+  if (!below_hi) return std::nullopt;
+  if (*below_hi >= 0) return -slope;  // t* < hi <= rho
+  const std::optional<int> d_at_rho = sign_at_rational(d, num, den);
+  if (!d_at_rho) return std::nullopt;
+  if (*d_at_rho == 0) return 0;                     // rho = t*, d's only root in the bracket
+  return *d_at_rho == c.sign_lo ? slope : -slope;  // rho on lo's side of t*, or on hi's
+}
+
+// The sign of p at the bracketed root t* of d when p may vanish there (the bracket could not separate them). With
+// lc(p)^k d = q p + r, q(t*) p(t*) = -r(t*); q and r are at most linear when p has degree 2 or deg d - 1, and their
+// signs at t* are exact (linear_sign_at_root).
 std::optional<int> sign_at_shared_root(const Candidate& c, const Poly& p, const Poly& d) {
   const int np = degree(p), nd = degree(d);
   if (nd == 1) return sign_at_rational(p, -d[0], d[1]);
-  Expansion num, den;
-  const Poly* check = &d;  // r is a root of *check's partner already; r = t* needs *check(r) == 0 as well
-  if (np == 1) {
-    num = -p[0];
-    den = p[1];
-  } else {
-    const std::optional<Poly> remainder = pseudo_remainder(d, p);
-    if (!remainder) return std::nullopt;
-    const Poly& r = *remainder;
-    const int nr = degree(r);
-    if (nr < 0) {
-      // p divides lc(p)^k d: p's roots in the bracket are roots of d, so t* is p's only possible root there.
-      const int at_lo = evaluate(p, c.lo).sign(), at_hi = evaluate(p, c.hi).sign();
-      return at_lo * at_hi < 0 ? 0 : at_lo;
-    }
-    if (nr != 1) return std::nullopt;
-    num = -r[0];
-    den = r[1];
-    check = &p;  // r(root) = 0 and p(root) = 0 imply d(root) = 0
+  if (np == 1) return linear_sign_at_root(c, p, d);
+  const std::optional<PseudoDivision> division = pseudo_divide(d, p);
+  if (!division) return std::nullopt;
+  const Poly& r = division->remainder;
+  if (degree(r) < 0) {
+    // p divides lc(p)^k d: p's roots in the bracket are roots of d, so t* is p's only possible root there.
+    const int at_lo = evaluate(p, c.lo).sign(), at_hi = evaluate(p, c.hi).sign();
+    return at_lo * at_hi < 0 ? 0 : at_lo;
   }
-  const std::optional<int> above_lo = sign_at_rational(Poly{-c.lo, Expansion(1.0)}, num, den);
-  const std::optional<int> below_hi = sign_at_rational(Poly{-c.hi, Expansion(1.0)}, num, den);
-  const std::optional<int> vanishes = sign_at_rational(*check, num, den);
-  if (!above_lo || !below_hi || !vanishes || *above_lo <= 0 || *below_hi >= 0 || *vanishes != 0) return std::nullopt;
-  return sign_at_rational(p, num, den);
+  if (degree(division->quotient) > 1 || degree(r) > 1) return std::nullopt;
+  const std::optional<int> q_sign = linear_sign_at_root(c, division->quotient, d);
+  const std::optional<int> r_sign = linear_sign_at_root(c, r, d);
+  if (!q_sign || !r_sign || *q_sign == 0) return std::nullopt;
+  return -*r_sign * *q_sign;
 }
 
 // Exact sign of p at the candidate, or nullopt when it cannot be decided.
