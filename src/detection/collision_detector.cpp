@@ -201,6 +201,15 @@ struct CollisionDetector::Impl {
     }
   }
 
+  // The chosen filter on one pair (the projection filter with the primitives' directions when asked).
+  bool culls(const ccd::CcdQuery& query, const ccd::CcdSettings& ccd_settings) const {
+    const bool nonpenetration = filter == ccd::CcdFilter::NonPenetration || filter == ccd::CcdFilter::Combined;
+    const bool projection = filter == ccd::CcdFilter::Projection || filter == ccd::CcdFilter::Combined;
+    if (nonpenetration && ccd::nonpenetration_filter_culls(query, ccd_settings)) return true;
+    return projection &&
+           ccd::projection_filter_culls(query, ccd_settings, ccd::ProjectionFilterOptions{settings.projection_normals});
+  }
+
   // Queries, culling and CCD for the pairs at the `todo` positions of the batch (the network mode always tests all).
   void narrow_phase(const Vertices& start, const Vertices& end) {
     // Gathering the pairs' positions counts as culling time: it is the batch the filters read.
@@ -222,7 +231,7 @@ struct CollisionDetector::Impl {
       for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
         const std::size_t i = todo[j];
         gather(start, end, i);
-        keep[i] = ccd::filter_culls(filter, queries[i], ccd_settings) ? 0 : 1;
+        keep[i] = culls(queries[i], ccd_settings) ? 0 : 1;
       });
     }
     stats.culling_ms = milliseconds_since(t);

@@ -42,6 +42,10 @@ struct DetectorSettings {
   /// response) and unchanged obstacles, search and test again only the pairs with a cloth vertex whose end position
   /// changed, and keep the previous answer for the others (it cannot differ). Not used with CullingMode::Network.
   bool reuse_unchanged = true;
+  /// Projection and Filters modes: also project onto the primitives' own directions (face normal, edge cross product)
+  /// at the start and end of the step, tried before the paper's five fixed directions (ccd::ProjectionFilterOptions).
+  /// Culls far more of a cloth resting on a surface at the thickness; false gives the paper's filter exactly.
+  bool projection_normals = true;
 };
 
 /// Counts and times of the last detect() call.
