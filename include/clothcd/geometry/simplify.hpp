@@ -28,7 +28,7 @@ struct SimplifyResult {
   bool reached_target = false;  ///< False when no valid contraction was left before the face target.
 };
 
-/// Simplifies `mesh` by repeated contraction of the cheapest valid vertex pair (binary heap, lazy deletion by version
+/// Simplifies `mesh` by repeated contraction of the cheapest valid vertex pair (4-ary heap, lazy deletion by version
 /// stamps). Positions are rescaled to unit extent internally. A contraction is rejected when it would flip or degenerate
 /// a face, create a non-manifold edge, pinch two boundaries together, or duplicate a face. The new vertex minimises the
 /// summed quadric (4x4 solve), else the best point on the segment, else the best of the endpoints and midpoint.
