@@ -43,6 +43,8 @@ class Expansion {
   /// Exact sign: -1, 0 or 1.
   [[nodiscard]] int sign() const { return size_ == 0 ? 0 : (terms_[size_ - 1] > 0.0 ? 1 : -1); }
   [[nodiscard]] bool is_zero() const { return size_ == 0; }
+  /// True when the expansion is x itself in one component (false can still mean an equal value in several).
+  [[nodiscard]] bool is_double(double x) const { return x == 0.0 ? size_ == 0 : size_ == 1 && terms_[0] == x; }
   /// The value rounded to about double precision (the components summed from the smallest).
   [[nodiscard]] double estimate() const;
   /// e with 2^e <= |largest component| < 2^(e + 1); the value must be non-zero.

@@ -25,6 +25,7 @@
 // reference.
 #include "ccd/expansion_collision.hpp"
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <deque>
@@ -44,8 +45,8 @@ constexpr int kMaxSpanBits = 180;      // binary orders of magnitude between the
 constexpr int kTimeBits = 150;         // every time used is a multiple of 2^-150
 constexpr int kMaxIsolationDepth = 120;  // Bernstein subdivision of [0, 1] for the roots (close roots need deep pieces)
 constexpr int kMaxRefinements = 40;     // bracket shrinking steps per sign
-constexpr int kSharedRootAttempt = 4;
-constexpr double kNarrowBracket = 1e-12;  // brackets are shrunk to this width before exact Bernstein signs   // after this many steps, test whether the sign polynomial vanishes at the root
+constexpr int kSharedRootAttempt = 0;     // exact sign by pseudo-division at the first narrow bracket that is undecided
+constexpr double kNarrowBracket = 1e-12;  // brackets are shrunk to this width before exact Bernstein signs
 
 // sum c[i] t^i, degree at most 3.
 struct Poly {
@@ -99,6 +100,11 @@ int degree(const Poly& p) {
 
 Expansion evaluate(const Poly& p, const Expansion& t) {
   Expansion r;
+  if (t.is_double(0.0)) return p.empty() ? r : p[0];
+  if (t.is_double(1.0)) {  // the sum of the coefficients, no products
+    for (std::size_t i = 0; i < p.size(); ++i) r = r + p[i];
+    return r;
+  }
   for (std::size_t i = p.size(); i-- > 0;) r = r * t + p[i];
   return r;
 }
@@ -514,17 +520,31 @@ Poly determinant(const PolyVector& a, const PolyVector& b, const PolyVector& c) 
 // The sign system: D and, built on first use, the 2D cross and dot products of W in every axis projection.
 class System {
  public:
-  System(PairKind kind, const std::array<std::array<double, 3>, 8>& c) {
+  System(PairKind kind, const std::array<std::array<double, 3>, 8>& c) : c_(c) {
     std::array<PolyVector, 4> x;
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) x[i][k] = {Expansion(c[i][k]), Expansion::difference(c[i + 4][k], c[i][k])};
     d_ = determinant(x[1] - x[0], x[2] - x[0], x[3] - x[0]);
+    const auto add = [&](int i, int j) {
+      pairs_[static_cast<std::size_t>(points_)] = {i, j};
+      w_[static_cast<std::size_t>(points_++)] = x[i] - x[j];
+    };
     if (kind == PairKind::VertexFace) {
-      for (int j = 1; j < 4; ++j) w_[points_++] = x[0] - x[j];
+      for (int j = 1; j < 4; ++j) add(0, j);
     } else {
       for (int i = 0; i < 2; ++i)
-        for (int j = 2; j < 4; ++j) w_[points_++] = x[i] - x[j];
+        for (int j = 2; j < 4; ++j) add(i, j);
     }
+  }
+  // Exact signs of the 2D cross (a < b) and dot products of W[a], W[b] in the projection dropping axis k at the
+  // step's start (end = 0) or end (end = 1), from those positions directly (no polynomial built or evaluated).
+  int end_cross(int end, int k, int a, int b) const {
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    return (w_at(end, a, u) * w_at(end, b, v) - w_at(end, a, v) * w_at(end, b, u)).sign();
+  }
+  int end_dot(int end, int k, int a, int b) const {
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    return (w_at(end, a, u) * w_at(end, b, u) + w_at(end, a, v) * w_at(end, b, v)).sign();
   }
   const Poly& d() const { return d_; }
   int points() const { return points_; }
@@ -547,6 +567,15 @@ class System {
   Poly d_;
   std::array<PolyVector, 4> w_;
   int points_ = 0;
+  // W[m] at the step's start (end = 0) or end (end = 1), one coordinate, exactly.
+  Expansion w_at(int end, int m, int axis) const {
+    const auto& pair = pairs_[static_cast<std::size_t>(m)];
+    return Expansion::difference(c_[static_cast<std::size_t>(4 * end + pair[0])][static_cast<std::size_t>(axis)],
+                                 c_[static_cast<std::size_t>(4 * end + pair[1])][static_cast<std::size_t>(axis)]);
+  }
+
+  std::array<std::array<double, 3>, 8> c_;     // the scaled coordinates: start points, then end points
+  std::array<std::array<int, 2>, 4> pairs_{};  // W[m] = x[pairs_[m][0]] - x[pairs_[m][1]]
   std::deque<Poly> store_;  // the polynomials built so far (a deque: their addresses stay valid)
   const Poly* cross_[3][4][4] = {};
   const Poly* dot_[3][4][4] = {};
@@ -559,6 +588,8 @@ class Predicate {
     for (auto& table : {&cross_, &dot_})
       for (auto& plane : *table)
         for (auto& row : plane) row.fill(kUnknown);
+    if (candidate.point && !candidate.rational)
+      end_ = candidate.lo.is_double(0.0) ? 0 : (candidate.lo.is_double(1.0) ? 1 : -1);
   }
 
   // Whether the origin is in conv W at the candidate; nullopt when a sign could not be decided.
@@ -586,11 +617,15 @@ class Predicate {
   }
   int cross(int k, int a, int b) {
     if (a > b) return -cross(k, b, a);
-    return sign_of(cross_[k][a][b], system_.cross(k, a, b));
+    int& cached = cross_[k][a][b];
+    if (end_ >= 0 && cached == kUnknown) cached = system_.end_cross(end_, k, a, b);
+    return cached != kUnknown ? cached : sign_of(cached, system_.cross(k, a, b));
   }
   int dot(int k, int a, int b) {
     if (a > b) std::swap(a, b);
-    return sign_of(dot_[k][a][b], system_.dot(k, a, b));
+    int& cached = dot_[k][a][b];
+    if (end_ >= 0 && cached == kUnknown) cached = system_.end_dot(end_, k, a, b);
+    return cached != kUnknown ? cached : sign_of(cached, system_.dot(k, a, b));
   }
   bool triangle_contains_origin(int k, int a, int b, int c) {
     const int s[3] = {cross(k, a, b), cross(k, b, c), cross(k, c, a)};
@@ -609,6 +644,7 @@ class Predicate {
   System& system_;
   Candidate& candidate_;
   bool failed_ = false;
+  int end_ = -1;  // 0 or 1 when the candidate is the step's start or end (signs straight from those positions)
   std::array<std::array<std::array<int, 4>, 4>, 3> cross_{};
   std::array<std::array<std::array<int, 4>, 4>, 3> dot_{};
 };
@@ -631,7 +667,8 @@ double lower_bound(const Candidate& c) {
 }
 
 // Candidates for the roots of p (degree n >= 1) in [0, 1]: a double root of a quadratic (zero discriminant) is the
-// rational -p1 / (2 p2), which bisection could never bracket; other roots are simple and isolated on the grid.
+// rational -p1 / (2 p2), which bisection could never bracket; other roots are simple, bracketed by the end signs of
+// pieces where p is monotone (linear p, a quadratic on either side of its vertex), else isolated on the grid.
 bool add_roots(const Poly& p, std::vector<Candidate>& out) {
   const int n = degree(p);
   if (n < 1) return true;
@@ -649,8 +686,49 @@ bool add_roots(const Poly& p, std::vector<Candidate>& out) {
       return true;
     }
   }
-  double estimate = 0.0;
-  return isolate(p, n, zero, p[0].sign(), one, sign_at_time(p, one, estimate), 0, out);
+  // Where p is monotone on a piece, its end signs give its roots there directly; bisection would instead follow a
+  // root just outside [0, 1] (or two roots 1e-16 apart) down to the grid.
+  double at_0 = 0.0, at_1 = 0.0;
+  const int s_0 = sign_at_time(p, zero, at_0), s_1 = sign_at_time(p, one, at_1);
+  const auto monotone_piece = [&](const Expansion& lo, int s_lo, double d_lo, const Expansion& hi, int s_hi,
+                                  double d_hi) {
+    if (s_lo == 0) out.push_back(point_at(lo));
+    if (s_lo * s_hi < 0) {
+      Candidate c;
+      c.lo = lo;
+      c.hi = hi;
+      c.sign_lo = s_lo;
+      c.root_of = &p;
+      c.d_lo = d_lo;
+      c.d_hi = d_hi;
+      out.push_back(c);
+    }
+  };
+  const auto finish = [&] {
+    if (s_1 == 0) out.push_back(point_at(one));
+    return true;
+  };
+  if (n == 1) {
+    monotone_piece(zero, s_0, at_0, one, s_1, at_1);
+    return finish();
+  }
+  if (n == 2) {
+    // p' = p1 + 2 p2 t: of one sign on (0, 1) when p'(0) and p'(1) do not have strictly opposite signs.
+    if (p[1].sign() * (p[1] + p[2].scaled(2.0)).sign() >= 0) {
+      monotone_piece(zero, s_0, at_0, one, s_1, at_1);
+      return finish();
+    }
+    // The vertex -p1 / (2 p2) is inside (0, 1): a grid time g near it where p has the sign opposite to p2 lies
+    // between the two roots, so p is monotone on [0, g] and on [g, 1] as far as roots go (one root at most each).
+    const Expansion g = grid_point(zero, -p[1].estimate() / p[2].scaled(2.0).estimate());
+    double at_g = 0.0;
+    if (strictly_between(zero, g, one) && sign_at_time(p, g, at_g) == -p[2].sign()) {
+      monotone_piece(zero, s_0, at_0, g, -p[2].sign(), at_g);
+      monotone_piece(g, -p[2].sign(), at_g, one, s_1, at_1);
+      return finish();
+    }
+  }
+  return isolate(p, n, zero, s_0, one, s_1, 0, out);
 }
 
 // D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
@@ -658,7 +736,12 @@ bool add_roots(const Poly& p, std::vector<Candidate>& out) {
 // such a root: the predicate is tested at t = 0, t = 1 and every root of every non-zero sign polynomial.
 std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
   const Expansion zero(0.0), one(1.0);
-  std::vector<Candidate> candidates{point_at(zero), point_at(one)};
+  // t = 0 first: its signs come straight from the start positions, and a contact there ends the search.
+  Candidate start = point_at(zero);
+  const std::optional<bool> at_start = Predicate(system, start).holds();
+  if (!at_start) return std::nullopt;
+  if (*at_start) return exact::ExactAnswer{true, 0.0};
+  std::vector<Candidate> candidates{point_at(one)};
   for (int k = 0; k < 3; ++k) {
     for (int a = 0; a < system.points(); ++a) {
       for (int b = a; b < system.points(); ++b) {
@@ -667,8 +750,21 @@ std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
       }
     }
   }
+  // Roughly earliest first, so that once a contact is found the later brackets are skipped (exactly: a bracket
+  // starting after the contact's lower bound cannot lower it).
+  std::vector<std::size_t> order(candidates.size());
+  std::vector<double> start_estimate(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    order[i] = i;
+    const Candidate& c = candidates[i];
+    start_estimate[i] = c.rational ? c.num.estimate() / c.den.estimate() : c.lo.estimate();
+  }
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return start_estimate[a] < start_estimate[b]; });
   exact::ExactAnswer answer;
-  for (Candidate& candidate : candidates) {
+  for (const std::size_t i : order) {
+    Candidate& candidate = candidates[i];
+    if (answer.hit && !candidate.rational && (candidate.lo - Expansion(answer.toi)).sign() > 0) continue;
     const std::optional<bool> inside = Predicate(system, candidate).holds();
     if (!inside) return std::nullopt;
     if (*inside) {
