@@ -1,7 +1,8 @@
 // Candidate search over bounding volume hierarchies (Jin et al., section 3.2.1): simultaneous depth-first descent of
 // two hierarchies, or of one against itself, then swept-box tests of the primitives owned by overlapping leaves.
-// Sphere hierarchies follow the paper's root-node double box literally: root spheres first, then the root AABBs (built
-// here, only when the spheres overlap), then the descent. The search is split into independent tasks for TBB; each
+// Sphere hierarchies follow the paper's root-node double box: root spheres first, then the root AABBs (built here, only
+// when the spheres overlap), then the descent, which tests each node pair's spheres and, when they overlap, its boxes
+// (loose spheres alone let far more node pairs through on thin cloth). The search is split into independent tasks for TBB; each
 // task writes its own buffer and the buffers are joined in task order, so the output does not depend on the schedule.
 #include "clothcd/broadphase/traversal.hpp"
 
@@ -33,10 +34,13 @@ struct BoxBox {
   bool operator()(int i, int j) const { return a->boxes()[i].overlaps(b->boxes()[j]); }
 };
 
-struct SphereSphere {
+// The double volume of sphere hierarchies at every node: the spheres first, the node boxes only when they overlap.
+struct SphereThenBox {
   const Bvh* a;
   const Bvh* b;
-  bool operator()(int i, int j) const { return a->spheres()[i].overlaps(b->spheres()[j]); }
+  bool operator()(int i, int j) const {
+    return a->spheres()[i].overlaps(b->spheres()[j]) && a->boxes()[i].overlaps(b->boxes()[j]);
+  }
 };
 
 // Separating axis test of an AABB against an OBB over the 15 candidate axes (Gottschalk et al. 1996).
@@ -388,7 +392,7 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
       local.volume_tests += 1;
       if (body_box(a).overlaps(body_box(b))) {
         local.root_aabb_overlap = true;
-        search(ta, tb, SphereSphere{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, out, local);
+        search(ta, tb, SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, out, local);
       }
     }
   } else if (ka == VolumeKind::Aabb && kb == VolumeKind::Aabb) {

@@ -62,7 +62,7 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
 
 /// Appends to `out` every pair between body `a` and body `b` (a.body < b.body) whose swept boxes overlap: vertices of a
 /// vs faces of b, vertices of b vs faces of a, edges of a vs edges of b. Volume pairs: Aabb-Aabb, Sphere-Sphere (root
-/// double box logic), Aabb-Obb. Throws std::invalid_argument for any other combination.
+/// double box logic; below the root, node spheres first and node boxes when the spheres overlap), Aabb-Obb. Throws std::invalid_argument for any other combination.
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
                           TraversalStats* stats = nullptr);
 
