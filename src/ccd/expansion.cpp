@@ -91,19 +91,23 @@ void sum_into(const Expansion& e, const Expansion& f, Expansion& h) {
   const auto by_magnitude = [](double a, double b) { return std::fabs(a) < std::fabs(b); };
   const std::size_t count = e.size_ + f.size_;
   std::merge(e.terms_, e.terms_ + e.size_, f.terms_, f.terms_ + f.size_, merged, by_magnitude);
-  // The chain of two-sums writes its output over the merged terms already consumed (index kept <= i).
+  // The chain of two-sums writes straight into h when it fits, else over the merged terms already consumed (index
+  // kept <= i), compressed afterwards.
+  double* out = count <= Expansion::kCapacity ? h.terms_ : merged;
   std::size_t written = 0;
   double q = merged[0];
   for (std::size_t i = 1; i < count; ++i) {
     double q_new, rest;
     two_sum(q, merged[i], q_new, rest);
-    if (rest != 0.0) merged[written++] = rest;
+    if (rest != 0.0) out[written++] = rest;
     q = q_new;
   }
-  if (q != 0.0) merged[written++] = q;
-  if (written > Expansion::kCapacity) written = compress_terms(merged, written, merged);
-  if (written > Expansion::kCapacity) throw ExpansionCapacityExceeded();
-  for (std::size_t i = 0; i < written; ++i) h.terms_[i] = merged[i];
+  if (q != 0.0) out[written++] = q;
+  if (out == merged) {
+    if (written > Expansion::kCapacity) written = compress_terms(merged, written, merged);
+    if (written > Expansion::kCapacity) throw ExpansionCapacityExceeded();
+    for (std::size_t i = 0; i < written; ++i) h.terms_[i] = merged[i];
+  }
   h.size_ = written;
 }
 

@@ -327,6 +327,20 @@ struct BitRange {
 std::optional<int> sign_at_rational(const Poly& p, Expansion num, Expansion den) {
   const int n = degree(p);
   if (n <= 0) return n < 0 ? 0 : p[0].sign();
+  {
+    // Filter: p(r) in double at r = num / den rounded (the estimates of up to 64 non-overlapping components are within
+    // 2^-47, so r within 2^-45); the coefficients' rounding, r's and Horner's errors stay below 2^-40 of
+    // sum |p_i| |r|^i for degree <= 3. Non-finite values fall through to the exact sum.
+    const double r = num.estimate() / den.estimate();
+    double value = 0.0, magnitude = 0.0;
+    for (int i = n; i >= 0; --i) {
+      const double coefficient = p[static_cast<std::size_t>(i)].estimate();
+      value = value * r + coefficient;
+      magnitude = magnitude * std::fabs(r) + std::fabs(coefficient);
+    }
+    const double bound = magnitude * 0x1p-40 + 0x1p-1000;
+    if (std::isfinite(value) && std::isfinite(bound) && std::fabs(value) > bound) return value > 0.0 ? 1 : -1;
+  }
   BitRange t_range, p_range;
   t_range.add(num);
   t_range.add(den);
