@@ -14,22 +14,24 @@
 //     (simple) root; a grid time where D is exactly zero is itself a candidate.
 //   - The sign of a polynomial P at a bracketed root t*: P's Bernstein coefficients on the bracket of one strict sign
 //     give it; otherwise the bracket shrinks (secant guess, then the exact signs of D on both sides of the guess).
-//     When P may vanish at t* (touching exactly), t* is written as a rational r = num / den (the root of D when D is
-//     linear, of P when P is linear, else of the pseudo-remainder of D by P) and P(r), D(r), r's place in the bracket
-//     are evaluated exactly in homogeneous form, after scaling num, den and the coefficients by powers of two.
-//   - D identically zero (coplanar for the whole step): candidates are 0, 1 and every root of every sign polynomial
-//     (a double root of a quadratic, where bisection cannot bracket, as the exact rational -p1 / (2 p2)).
-// The predicate at each candidate is the reference's. The tier gives up (nullopt) when a sign stays undecided (a
-// multiple root, a shared irrational root of two quadratics), an exact value gets too long or too wide for the
-// double exponent range, or the coordinates span too many orders of magnitude; the caller then runs the GMP
-// reference.
+//     When P may vanish at t* (touching exactly, or missing by far less than rounding), the pseudo-division
+//     lc(P)^k D = Q P + R gives Q(t*) P(t*) = -R(t*); with Q and R at most linear, their signs at t* come from their
+//     rational roots placed against the bracket and t* (exact homogeneous evaluation, after scaling by powers of two).
+//   - D identically zero (coplanar for the whole step): t = 0 first, then 1 and every root of every sign polynomial,
+//     earliest first; roots of linear and quadratic sign polynomials are bracketed on pieces where they are monotone
+//     (split at the vertex), a double root as the exact rational -p1 / (2 p2).
+// Signs are filtered first (double or interval arithmetic with a rigorous error bound), expansions only when the
+// filter cannot decide. The predicate at each candidate is the reference's (at t = 0 and 1 straight from the end
+// positions). The tier gives up (nullopt) when a sign stays undecided (a multiple root of D, a sign that needs a
+// quotient or remainder above degree 1), an exact value gets too long or too wide for the double exponent range, or
+// the coordinates span too many orders of magnitude; the caller then runs the GMP reference.
 #include "ccd/expansion_collision.hpp"
 
 #include <algorithm>
 #include <array>
 #include <climits>
-#include <deque>
 #include <cmath>
+#include <deque>
 #include <initializer_list>
 #include <optional>
 #include <vector>

@@ -8,9 +8,9 @@
 namespace clothcd::ccd::detail {
 
 /// The exact answer of the thickness-0 CCD question (same as exact::exact_collision on the query's doubles), computed
-/// with floating-point expansions; nullopt when this tier cannot decide it (the coplanarity cubic D identically zero
-/// or with a multiple root, a sign polynomial vanishing at an irrational root of D, or coordinates spanning more than
-/// 180 binary orders of magnitude): the caller then asks the GMP reference.
+/// with floating-point expansions; nullopt when this tier cannot decide it (the coplanarity cubic D with a multiple
+/// root, a sign at a root of D that needs a pseudo-quotient or remainder above degree 1, or coordinates spanning more
+/// than 180 binary orders of magnitude): the caller then asks the GMP reference.
 [[nodiscard]] std::optional<exact::ExactAnswer> expansion_collision(const CcdQuery& query);
 
 }  // namespace clothcd::ccd::detail
