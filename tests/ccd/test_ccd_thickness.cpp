@@ -6,6 +6,7 @@
 #include <random>
 
 #include "ccd/ccd_test_support.hpp"
+#include "ccd/sampled_distance.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;
@@ -17,29 +18,12 @@ namespace {
 constexpr int kGrid = 24;
 constexpr int kTimes = 96;
 
-// Upper bound of the distance at time t: minimum over a kGrid parameter grid of each primitive (points included).
 double grid_distance(const ccd::CcdQuery& query, double t) {
-  std::array<Vector3d, 4> x;
-  for (int i = 0; i < 4; ++i) x[i] = (1 - t) * query.start[i] + t * query.end[i];
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i <= kGrid; ++i) {
-    for (int j = 0; j <= kGrid; ++j) {
-      const double u = static_cast<double>(i) / kGrid, v = static_cast<double>(j) / kGrid;
-      if (query.kind == PairKind::VertexFace) {
-        if (u + v > 1) continue;
-        best = std::min(best, (x[0] - (x[1] + u * (x[2] - x[1]) + v * (x[3] - x[1]))).norm());
-      } else {
-        best = std::min(best, ((x[0] + u * (x[1] - x[0])) - (x[2] + v * (x[3] - x[2]))).norm());
-      }
-    }
-  }
-  return best;
+  return clothcd::test::sampled_distance(query, t, kGrid);
 }
 
 double reference_min_distance(const ccd::CcdQuery& query) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int k = 0; k <= kTimes; ++k) best = std::min(best, grid_distance(query, static_cast<double>(k) / kTimes));
-  return best;
+  return clothcd::test::sampled_min_distance(query, kGrid, kTimes);
 }
 
 class Random {

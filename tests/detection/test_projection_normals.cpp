@@ -4,10 +4,9 @@
 // and a pair the brute-force distance puts inside the thickness is never dropped.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
-#include <limits>
 #include <random>
 
+#include "ccd/sampled_distance.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
 namespace {
@@ -15,32 +14,6 @@ namespace {
 using clothcd::PairKind;
 using Eigen::Vector3d;
 namespace ccd = clothcd::ccd;
-
-// Distance at time t sampled on a parameter grid (an upper bound of the true distance).
-double sampled_distance(const ccd::CcdQuery& q, double t) {
-  std::array<Vector3d, 4> x;
-  for (int i = 0; i < 4; ++i) x[i] = (1 - t) * q.start[i] + t * q.end[i];
-  constexpr int kGrid = 20;
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i <= kGrid; ++i) {
-    for (int j = 0; j <= kGrid; ++j) {
-      const double u = static_cast<double>(i) / kGrid, v = static_cast<double>(j) / kGrid;
-      if (q.kind == PairKind::VertexFace) {
-        if (u + v > 1) continue;
-        best = std::min(best, (x[0] - (x[1] + u * (x[2] - x[1]) + v * (x[3] - x[1]))).norm());
-      } else {
-        best = std::min(best, ((x[0] + u * (x[1] - x[0])) - (x[2] + v * (x[3] - x[2]))).norm());
-      }
-    }
-  }
-  return best;
-}
-
-double sampled_min_distance(const ccd::CcdQuery& q) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int k = 0; k <= 32; ++k) best = std::min(best, sampled_distance(q, k / 32.0));
-  return best;
-}
 
 // A pair whose closest points start about `gap` apart: a vertex over a triangle, or two crossing edges, both moving
 // a little (like a cloth resting on a surface or on itself).
@@ -90,7 +63,7 @@ TEST_CASE("the projection filter with primitive normals never drops a pair withi
       // A proven contact must never be dropped (a conservative report at the thickness may be).
       CHECK(exact.state != ccd::CcdState::Hit);
     }
-    if (i % 10 == 0 && sampled_min_distance(q) <= thickness) {
+    if (i % 10 == 0 && clothcd::test::sampled_min_distance(q, 20, 32) <= thickness) {
       ++within;
       CHECK_FALSE(culled);
     }
