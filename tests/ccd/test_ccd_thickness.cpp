@@ -1,8 +1,6 @@
 // Thickness (minimum separation h > 0) CCD against a slow brute-force reference: the distance of the two primitives
 // sampled on a fine grid of their parameters at many times. A grid distance <= h proves the pair comes within h, so
 // the CCD must report it (zero false negatives); far-apart coplanar (flat cloth) pairs must be decided Separated.
-#include <algorithm>
-#include <limits>
 #include <random>
 
 #include "ccd/ccd_test_support.hpp"
