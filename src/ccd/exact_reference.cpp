@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "ccd/exact_polynomial.hpp"
+#include "ccd/projected_triangle.hpp"
 
 namespace clothcd::ccd::exact {
 
@@ -105,19 +106,9 @@ int cross_sign(const SignSystem& system, Signs& signs, int k, int a, int b) {
 }
 
 bool triangle_contains_origin(const SignSystem& system, Signs& signs, int k, int a, int b, int c) {
-  const int s[3] = {cross_sign(system, signs, k, a, b), cross_sign(system, signs, k, b, c),
-                    cross_sign(system, signs, k, c, a)};
-  const bool has_positive = s[0] > 0 || s[1] > 0 || s[2] > 0;
-  const bool has_negative = s[0] < 0 || s[1] < 0 || s[2] < 0;
-  if (has_positive && has_negative) return false;
-  if (has_positive || has_negative) return true;
-  // All three points lie on one line through the origin: it is inside iff two of them (or one with itself, i.e. a
-  // point at the origin) are not strictly on the same side.
-  const int ids[3] = {a, b, c};
-  for (int i : ids)
-    for (int j : ids)
-      if (signs[system.dot[k][i][j]] <= 0) return true;
-  return false;
+  return detail::triangle_contains_origin_by_signs(
+      {cross_sign(system, signs, k, a, b), cross_sign(system, signs, k, b, c), cross_sign(system, signs, k, c, a)},
+      {a, b, c}, [&](int i, int j) { return signs[system.dot[k][i][j]]; });
 }
 
 bool predicate(const SignSystem& system, Signs& signs) {

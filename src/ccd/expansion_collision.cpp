@@ -38,6 +38,7 @@
 
 #include "ccd/expansion.hpp"
 #include "ccd/interval.hpp"
+#include "ccd/projected_triangle.hpp"
 
 namespace clothcd::ccd::detail {
 
@@ -644,16 +645,8 @@ class Predicate {
     return cached != kUnknown ? cached : sign_of(cached, system_.dot(k, a, b));
   }
   bool triangle_contains_origin(int k, int a, int b, int c) {
-    const int s[3] = {cross(k, a, b), cross(k, b, c), cross(k, c, a)};
-    const bool has_positive = s[0] > 0 || s[1] > 0 || s[2] > 0;
-    const bool has_negative = s[0] < 0 || s[1] < 0 || s[2] < 0;
-    if (has_positive && has_negative) return false;
-    if (has_positive || has_negative) return true;
-    const int ids[3] = {a, b, c};
-    for (int i : ids)
-      for (int j : ids)
-        if (dot(k, i, j) <= 0) return true;
-    return false;
+    return detail::triangle_contains_origin_by_signs({cross(k, a, b), cross(k, b, c), cross(k, c, a)}, {a, b, c},
+                                                     [&](int i, int j) { return dot(k, i, j); });
   }
 
   static constexpr int kUnknown = 2;
