@@ -100,18 +100,38 @@ FlatBox leaf_box(const Bvh& bvh, int node) {
   return b;
 }
 
+// Lists of one search task, reused from leaf pair to leaf pair.
+struct LeafScratch {
+  std::vector<int> selected;  // primitives of one leaf whose box overlaps the other leaf's box
+  std::vector<int> hits;      // primitives of the other leaf that pass every test against one selected primitive
+};
+
+// Writes the positions j in [begin, end) for which `passes(j)` holds to `out` (grown as needed) and returns how many.
+// The loop has no data-dependent branch: neighbouring primitives pass or fail their box tests unpredictably, and a
+// mispredicted branch costs more than the few tests themselves.
+template <class Passes>
+int collect(int begin, int end, std::vector<int>& out, const Passes& passes) {
+  if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
+  int n = 0;
+  for (int j = begin; j < end; ++j) {
+    out[n] = j;
+    n += passes(j) ? 1 : 0;
+  }
+  return n;
+}
+
 // Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
 // primitive is first tested against the other leaf's box.
 // With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
-                       CandidateSet& out, TraversalStats& stats) {
+                       CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
   const BvhNode& la = ta.nodes()[na];
   const BvhNode& lb = tb.nodes()[nb];
   const FlatBox box_a = leaf_box(ta, na), box_b = leaf_box(tb, nb);
-  // Whether the vertex at owned position i of `vertex_body`, or the face at tree position p of `face_body`, brings a
-  // moved vertex of body a into the pair.
+  // Whether the vertex at owned position i of the vertex body, or the face at tree position p of the face body, brings
+  // a moved vertex of body a into the pair.
   auto wanted = [&](bool vertex_in_a, int i, int p) {
     if (moved == nullptr) return true;
     if (vertex_in_a) return moved[ta.owned_vertices()[i]] != 0;
@@ -123,14 +143,20 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     const Bvh& tv = *vertex_body.bvh;
     const Bvh& tf = *face_body.bvh;
     const bool vertex_in_a = &vertex_body == &a;
+    const FlatBox* vertex_boxes = tv.ordered_vertex_boxes().data();
+    const FlatBox* face_boxes = tf.ordered_face_boxes().data();
     const Range vr = vertex_range(tv, vertex_leaf);
-    for (int i = vr.begin; i < vr.end; ++i) {
-      const FlatBox& box = tv.ordered_vertex_boxes()[i];
-      ++stats.primitive_tests;
-      if (!box.overlaps(face_leaf_box)) continue;
-      stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
-      for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
-        if (box.overlaps(tf.ordered_face_boxes()[p]) && wanted(vertex_in_a, i, p)) {
+    const int selected = collect(vr.begin, vr.end, scratch.selected,
+                                 [&](int i) { return vertex_boxes[i].overlaps(face_leaf_box); });
+    stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
+    for (int k = 0; k < selected; ++k) {
+      const int i = scratch.selected[k];
+      const FlatBox& box = vertex_boxes[i];
+      const int hits = collect(face_leaf.face_begin, face_leaf.face_end, scratch.hits,
+                               [&](int p) { return box.overlaps(face_boxes[p]); });
+      for (int h = 0; h < hits; ++h) {
+        const int p = scratch.hits[h];
+        if (wanted(vertex_in_a, i, p)) {
           out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
         }
       }
@@ -140,44 +166,55 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
   vertices_against_faces(b, lb, a, la, box_a);
   const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
   const int* edges_a = ta.ordered_edges().data();
-  for (int i = ea.begin; i < ea.end; ++i) {
-    const FlatBox& box = ta.ordered_edge_boxes()[i];
-    ++stats.primitive_tests;
-    if (moved != nullptr && moved[edges_a[2 * i]] == 0 && moved[edges_a[2 * i + 1]] == 0) continue;
-    if (!box.overlaps(box_b)) continue;
-    stats.primitive_tests += eb.end - eb.begin;
-    for (int j = eb.begin; j < eb.end; ++j) {
-      if (box.overlaps(tb.ordered_edge_boxes()[j])) {
-        out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]});
-      }
+  const FlatBox* edge_boxes_a = ta.ordered_edge_boxes().data();
+  const FlatBox* edge_boxes_b = tb.ordered_edge_boxes().data();
+  const int selected = collect(ea.begin, ea.end, scratch.selected, [&](int i) {
+    return edge_boxes_a[i].overlaps(box_b) &
+           (moved == nullptr || moved[edges_a[2 * i]] != 0 || moved[edges_a[2 * i + 1]] != 0);
+  });
+  stats.primitive_tests += (ea.end - ea.begin) + selected * (eb.end - eb.begin);
+  for (int k = 0; k < selected; ++k) {
+    const int i = scratch.selected[k];
+    const FlatBox& box = edge_boxes_a[i];
+    const int hits = collect(eb.begin, eb.end, scratch.hits, [&](int j) { return box.overlaps(edge_boxes_b[j]); });
+    for (int h = 0; h < hits; ++h) {
+      out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[scratch.hits[h]]});
     }
   }
 }
 
-// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Between two leaves,
-// each primitive is first tested against the other leaf's box. With `moved` (flags per vertex), only pairs with a
-// moved vertex are produced.
+// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Each primitive is
+// first tested against the other leaf's box; a pair passes when the boxes overlap and no vertex is shared. With
+// `moved` (flags per vertex), only pairs with a moved vertex are produced.
 void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
-                      TraversalStats& stats) {
+                      TraversalStats& stats, LeafScratch& scratch) {
   const Bvh& t = *body.bvh;
   const BvhNode& la = t.nodes()[na];
   const BvhNode& lb = t.nodes()[nb];
   const bool same = na == nb;
   const int* faces = t.ordered_faces().data();
   const int* edges = t.ordered_edges().data();
+  const FlatBox* vertex_boxes = t.ordered_vertex_boxes().data();
+  const FlatBox* face_boxes = t.ordered_face_boxes().data();
+  const FlatBox* edge_boxes = t.ordered_edge_boxes().data();
   auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf,
                                     const FlatBox& face_leaf_box) {
     const Range vr = vertex_range(t, vertex_leaf);
-    for (int i = vr.begin; i < vr.end; ++i) {
+    const int selected = collect(vr.begin, vr.end, scratch.selected,
+                                 [&](int i) { return vertex_boxes[i].overlaps(face_leaf_box); });
+    stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
+    for (int k = 0; k < selected; ++k) {
+      const int i = scratch.selected[k];
       const int v = t.owned_vertices()[i];
-      const FlatBox& box = t.ordered_vertex_boxes()[i];
-      ++stats.primitive_tests;
-      if (!same && !box.overlaps(face_leaf_box)) continue;
-      stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
-      for (int p = face_leaf.face_begin; p < face_leaf.face_end; ++p) {
+      const FlatBox& box = vertex_boxes[i];
+      const int hits = collect(face_leaf.face_begin, face_leaf.face_end, scratch.hits, [&](int p) {
         const int* f = faces + 3 * p;
-        if (f[0] != v && f[1] != v && f[2] != v && box.overlaps(t.ordered_face_boxes()[p]) &&
-            (moved == nullptr || moved[v] || moved[f[0]] || moved[f[1]] || moved[f[2]])) {
+        return box.overlaps(face_boxes[p]) & (f[0] != v) & (f[1] != v) & (f[2] != v);
+      });
+      for (int h = 0; h < hits; ++h) {
+        const int p = scratch.hits[h];
+        const int* f = faces + 3 * p;
+        if (moved == nullptr || moved[v] || moved[f[0]] || moved[f[1]] || moved[f[2]]) {
           out.vertex_face.push_back({body.body, v, body.body, t.face_order()[p]});
         }
       }
@@ -187,17 +224,23 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   vertices_against_faces(la, lb, box_b);
   if (!same) vertices_against_faces(lb, la, box_a);
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
-  for (int i = ea.begin; i < ea.end; ++i) {
+  const int selected =
+      collect(ea.begin, ea.end, scratch.selected, [&](int i) { return edge_boxes[i].overlaps(box_b); });
+  stats.primitive_tests += ea.end - ea.begin;
+  for (int k = 0; k < selected; ++k) {
+    const int i = scratch.selected[k];
     const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
-    const FlatBox& box = t.ordered_edge_boxes()[i];
-    ++stats.primitive_tests;
-    if (!same && !box.overlaps(box_b)) continue;
+    const FlatBox& box = edge_boxes[i];
     const int first = same ? i + 1 : eb.begin;
     stats.primitive_tests += eb.end - first;
-    for (int j = first; j < eb.end; ++j) {
+    const int hits = collect(first, eb.end, scratch.hits, [&](int j) {
       const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-      if (a0 != b0 && a0 != b1 && a1 != b0 && a1 != b1 && box.overlaps(t.ordered_edge_boxes()[j]) &&
-          (moved == nullptr || moved[a0] || moved[a1] || moved[b0] || moved[b1])) {
+      return box.overlaps(edge_boxes[j]) & (a0 != b0) & (a0 != b1) & (a1 != b0) & (a1 != b1);
+    });
+    for (int h = 0; h < hits; ++h) {
+      const int j = scratch.hits[h];
+      const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
+      if (moved == nullptr || moved[a0] || moved[a1] || moved[b0] || moved[b1]) {
         const int e = t.owned_edges()[i], g = t.owned_edges()[j];
         out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
       }
@@ -295,11 +338,12 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
 
   auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
     std::vector<Task> stack{first};
+    LeafScratch scratch;
     while (!stack.empty()) {
       const Task task = stack.back();
       stack.pop_back();
       step(ta, tb, overlap, dirty, task, task_stats, [&](const Task& t) { stack.push_back(t); },
-           [&](const Task& t) { leaf_work(t, task_out, task_stats); });
+           [&](const Task& t) { leaf_work(t, task_out, task_stats, scratch); });
     }
   };
 
@@ -357,8 +401,8 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
   const Bvh& t = *body.bvh;
   check_moved(body, settings);
   const std::uint8_t* moved = settings.moved_vertices != nullptr ? settings.moved_vertices->data() : nullptr;
-  auto leaf_work = [&body, moved](const Task& task, CandidateSet& o, TraversalStats& s) {
-    leaf_pair_within(body, task.a, task.b, moved, o, s);
+  auto leaf_work = [&body, moved](const Task& task, CandidateSet& o, TraversalStats& s, LeafScratch& scratch) {
+    leaf_pair_within(body, task.a, task.b, moved, o, s, scratch);
   };
   const Task root{0, 0, true, true};
   // Sphere hierarchies descend on their node boxes here: neighbouring cloth regions always touch, and their boxes
@@ -380,8 +424,8 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
   const Bvh& tb = *b.bvh;
   check_moved(a, settings);
   const std::uint8_t* moved = settings.moved_vertices != nullptr ? settings.moved_vertices->data() : nullptr;
-  auto leaf_work = [&a, &b, moved](const Task& task, CandidateSet& o, TraversalStats& s) {
-    leaf_pair_between(a, b, task.a, task.b, moved, o, s);
+  auto leaf_work = [&a, &b, moved](const Task& task, CandidateSet& o, TraversalStats& s, LeafScratch& scratch) {
+    leaf_pair_between(a, b, task.a, task.b, moved, o, s, scratch);
   };
   const VolumeKind ka = ta.settings().volume, kb = tb.settings().volume;
   if (ka == VolumeKind::Sphere && kb == VolumeKind::Sphere) {
