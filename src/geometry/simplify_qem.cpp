@@ -103,8 +103,9 @@ Placement place(const Quadric& q, const Eigen::Vector3d& pu, const Eigen::Vector
   return best;
 }
 
-// 16 bytes, so more of the heap stays in cache. The stamps are the low 16 bits of the vertex versions: a wrap-around
-// match can only let a stale entry through, and every popped entry is re-placed and re-validated anyway.
+// 16 bytes, so more of the heap stays in cache. The stamps are the vertex versions when the entry was pushed (16 bits: a
+// wrap-around match can only let a stale entry of two live vertices through, and every popped entry is re-placed and
+// re-validated anyway).
 struct Candidate {
   float cost;
   int u, v;
@@ -124,6 +125,8 @@ struct CellHash {
 
 // A face contracted away keeps kDeadFace as its first corner.
 constexpr int kDeadFace = -1;
+// The version of a vertex contracted away; live versions count 0 .. kDeadVersion - 1 and wrap around.
+constexpr std::uint16_t kDeadVersion = 0xFFFF;
 // Room for this many more faces than at the start in each vertex's list before the list moves.
 constexpr int kListSlack = 4;
 
@@ -186,11 +189,12 @@ class Simplifier {
     }
   }
 
-  // False for a heap entry whose vertices were contracted away or changed since it was pushed.
+  // False for a heap entry whose vertices were contracted away or changed since it was pushed (one small array, so the
+  // purges' scans over the whole heap mostly hit the cache).
   [[nodiscard]] bool is_current(const Candidate& c) const {
-    return alive_[size_t(c.u)] && alive_[size_t(c.v)] && std::uint16_t(stamp_[size_t(c.u)]) == c.stamp_u &&
-           std::uint16_t(stamp_[size_t(c.v)]) == c.stamp_v;
+    return version_[size_t(c.u)] == c.stamp_u && version_[size_t(c.v)] == c.stamp_v;
   }
+  [[nodiscard]] bool alive_vertex(int v) const { return version_[size_t(v)] != kDeadVersion; }
 
   void rescale(const TriangleMesh& mesh) {
     origin_ = mesh.vertices.colwise().minCoeff().transpose();
@@ -208,10 +212,9 @@ class Simplifier {
       position_[k] = unit[size_t(order[k])];
       internal_index_[size_t(order[k])] = int(k);
     }
-    alive_.assign(n, 1);
+    version_.assign(n, 0);
     locked_.assign(n, 0);
     boundary_.assign(n, 0);
-    stamp_.assign(n, 0);
     parent_.resize(n);
     for (size_t i = 0; i < n; ++i) parent_[i] = static_cast<int>(i);
     mark_.assign(n, 0);
@@ -334,7 +337,7 @@ class Simplifier {
     if (locked_[size_t(u)] || locked_[size_t(v)]) return;
     const Quadric q = sum(quadric_[size_t(u)], quadric_[size_t(v)]);
     const double cost = place(q, position_[size_t(u)], position_[size_t(v)]).cost;
-    heap_.push({float(cost), u, v, std::uint16_t(stamp_[size_t(u)]), std::uint16_t(stamp_[size_t(v)])});
+    heap_.push({float(cost), u, v, version_[size_t(u)], version_[size_t(v)]});
   }
 
   void push_edge_pairs() {
@@ -452,9 +455,10 @@ class Simplifier {
     quadric_[size_t(v)] = q;
     position_[size_t(v)] = p;
     boundary_[size_t(v)] = boundary_[size_t(v)] || boundary_[size_t(u)];
-    alive_[size_t(u)] = 0;
+    version_[size_t(u)] = kDeadVersion;
     parent_[size_t(u)] = v;
-    ++stamp_[size_t(v)];
+    std::uint16_t& version = version_[size_t(v)];
+    version = version + 1 == kDeadVersion ? 0 : std::uint16_t(version + 1);
     // Room first: the appends below then move no list, so u's entries can be read in place.
     vertex_faces_.reserve(v, vertex_faces_.size(v) + vertex_faces_.size(u));
     for (int f : vertex_faces_[u]) {
@@ -504,7 +508,7 @@ class Simplifier {
     size_t kept = 0;
     for (int w : list) {
       w = root(w);
-      if (w == v || !alive_[size_t(w)] || mark_[size_t(w)] == seen) continue;
+      if (w == v || !alive_vertex(w) || mark_[size_t(w)] == seen) continue;
       const bool is_neighbour = mark_[size_t(w)] == neighbour;
       mark_[size_t(w)] = seen;
       list[kept++] = w;
@@ -548,8 +552,9 @@ class Simplifier {
   std::vector<std::array<int, 3>> faces_;
   std::vector<int> internal_face_;  // input face -> its index here (ordered by least vertex)
   std::vector<std::array<int, 3>> edge_faces_;  // live faces per face edge, at the start (count_edge_faces)
-  std::vector<char> alive_, locked_, boundary_;
-  std::vector<unsigned> stamp_, mark_;
+  std::vector<std::uint16_t> version_;  // kDeadVersion once contracted away
+  std::vector<char> locked_, boundary_;
+  std::vector<unsigned> mark_;
   unsigned epoch_ = 0;
   std::vector<int> parent_;
   std::vector<int> neighbours_;  // scratch of contract()
