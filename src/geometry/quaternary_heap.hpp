@@ -94,6 +94,23 @@ class QuaternaryHeap {
   static constexpr std::size_t kPerLine = sizeof(Entry) < 64 ? 64 / sizeof(Entry) : 1;  // entries per cache line
   static std::size_t parent(std::size_t i) { return i / 4 + 2; }
 
+  // The least of the four entries from `first`, by selects rather than branches: which child is least is a coin toss,
+  // and mispredicted branches cost more than the comparisons.
+  [[nodiscard]] std::size_t least_of_four(std::size_t first) const {
+    const Entry* c = &entries_[first];
+    const std::size_t low = c[1].cost < c[0].cost ? 1 : 0;
+    const std::size_t high = c[3].cost < c[2].cost ? 3 : 2;
+    return first + (c[high].cost < c[low].cost ? high : low);
+  }
+
+  // The least of the entries first .. n - 1 (fewer than four, at least one).
+  [[nodiscard]] std::size_t least_of_few(std::size_t first, std::size_t n) const {
+    std::size_t best = first;
+    for (std::size_t c = first + 1; c < n; ++c)
+      if (entries_[c].cost < entries_[best].cost) best = c;
+    return best;
+  }
+
   void sift_down(std::size_t i) {
     const Entry e = entries_[i];
     const std::size_t n = entries_.size();
@@ -104,10 +121,7 @@ class QuaternaryHeap {
       const std::size_t below = 4 * first - 8;
       const std::size_t count = below < n ? std::min<std::size_t>(16, n - below) : 0;
       for (std::size_t k = 0; k < count; k += kPerLine) __builtin_prefetch(&entries_[below + k]);
-      std::size_t best = first;
-      const std::size_t last = first + 4 < n ? first + 4 : n;
-      for (std::size_t c = first + 1; c < last; ++c)
-        if (entries_[c].cost < entries_[best].cost) best = c;
+      const std::size_t best = first + 4 <= n ? least_of_four(first) : least_of_few(first, n);
       if (!(entries_[best].cost < e.cost)) break;
       entries_[i] = entries_[best];
       i = best;
