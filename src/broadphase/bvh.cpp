@@ -121,6 +121,8 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
     ordered_edges_[2 * i] = topology.edges[2 * owned_edges_[i]];
     ordered_edges_[2 * i + 1] = topology.edges[2 * owned_edges_[i] + 1];
   }
+  packed_faces_.assign(ordered_faces_, 3);
+  packed_edges_.assign(ordered_edges_, 2);
 
   boxes_.clear();
   spheres_.clear();
@@ -163,6 +165,9 @@ void Bvh::refit(const SweptBoxes& boxes) {
   for (std::size_t i = 0; i < owned_vertices_.size(); ++i) ordered_vertex_boxes_[i] = boxes.vertices[owned_vertices_[i]];
   ordered_edge_boxes_.resize(owned_edges_.size());
   for (std::size_t i = 0; i < owned_edges_.size(); ++i) ordered_edge_boxes_[i] = boxes.edges[owned_edges_[i]];
+  packed_face_boxes_.assign(ordered_face_boxes_);
+  packed_vertex_boxes_.assign(ordered_vertex_boxes_);
+  packed_edge_boxes_.assign(ordered_edge_boxes_);
   const int node_count = static_cast<int>(nodes_.size());
   looseness_ = 0.0;
   if (settings_.volume == VolumeKind::Obb) {

@@ -120,6 +120,26 @@ int collect(int begin, int end, std::vector<int>& out, const Passes& passes) {
   return n;
 }
 
+// Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
+// `mask4(j)`, four positions at a time on packed data (bit k for position j + k; it may pass pairs that `confirm`
+// rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes.
+template <class Mask4, class Confirm>
+int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4, const Confirm& confirm) {
+  if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
+  int n = 0;
+  for (int j = begin; j < end; j += 4) {
+    unsigned mask = mask4(j);
+    if (end - j < 4) mask &= (1u << (end - j)) - 1u;
+    while (mask != 0) {
+      const int k = j + __builtin_ctz(mask);
+      mask &= mask - 1u;
+      out[n] = k;
+      n += confirm(k) ? 1 : 0;
+    }
+  }
+  return n;
+}
+
 // Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
 // primitive is first tested against the other leaf's box.
 // With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
@@ -152,8 +172,11 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     for (int k = 0; k < selected; ++k) {
       const int i = scratch.selected[k];
       const FlatBox& box = vertex_boxes[i];
-      const int hits = collect(face_leaf.face_begin, face_leaf.face_end, scratch.hits,
-                               [&](int p) { return box.overlaps(face_boxes[p]); });
+      const PackedBox q = tv.packed_vertex_boxes().at(i);
+      const int hits = collect_packed(
+          face_leaf.face_begin, face_leaf.face_end, scratch.hits,
+          [&](int p) { return lane_bits(tf.packed_face_boxes().overlap_lanes(p, q)); },
+          [&](int p) { return box.overlaps(face_boxes[p]); });
       for (int h = 0; h < hits; ++h) {
         const int p = scratch.hits[h];
         if (wanted(vertex_in_a, i, p)) {
@@ -176,7 +199,10 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
   for (int k = 0; k < selected; ++k) {
     const int i = scratch.selected[k];
     const FlatBox& box = edge_boxes_a[i];
-    const int hits = collect(eb.begin, eb.end, scratch.hits, [&](int j) { return box.overlaps(edge_boxes_b[j]); });
+    const PackedBox q = ta.packed_edge_boxes().at(i);
+    const int hits = collect_packed(
+        eb.begin, eb.end, scratch.hits, [&](int j) { return lane_bits(tb.packed_edge_boxes().overlap_lanes(j, q)); },
+        [&](int j) { return box.overlaps(edge_boxes_b[j]); });
     for (int h = 0; h < hits; ++h) {
       out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[scratch.hits[h]]});
     }
@@ -207,10 +233,13 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
       const int i = scratch.selected[k];
       const int v = t.owned_vertices()[i];
       const FlatBox& box = vertex_boxes[i];
-      const int hits = collect(face_leaf.face_begin, face_leaf.face_end, scratch.hits, [&](int p) {
-        const int* f = faces + 3 * p;
-        return box.overlaps(face_boxes[p]) & (f[0] != v) & (f[1] != v) & (f[2] != v);
-      });
+      const PackedBox q = t.packed_vertex_boxes().at(i);
+      const int hits = collect_packed(
+          face_leaf.face_begin, face_leaf.face_end, scratch.hits,
+          [&](int p) {
+            return lane_bits(t.packed_face_boxes().overlap_lanes(p, q) & ~t.packed_faces().face_uses_lanes(p, v));
+          },
+          [&](int p) { return box.overlaps(face_boxes[p]); });
       for (int h = 0; h < hits; ++h) {
         const int p = scratch.hits[h];
         const int* f = faces + 3 * p;
@@ -233,10 +262,15 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
     const FlatBox& box = edge_boxes[i];
     const int first = same ? i + 1 : eb.begin;
     stats.primitive_tests += eb.end - first;
-    const int hits = collect(first, eb.end, scratch.hits, [&](int j) {
-      const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-      return box.overlaps(edge_boxes[j]) & (a0 != b0) & (a0 != b1) & (a1 != b0) & (a1 != b1);
-    });
+    const PackedBox q = t.packed_edge_boxes().at(i);
+    const int hits = collect_packed(
+        first, eb.end, scratch.hits,
+        [&](int j) {
+          const PackedVertexIds& ids = t.packed_edges();
+          return lane_bits(t.packed_edge_boxes().overlap_lanes(j, q) &
+                           ~(ids.edge_uses_lanes(j, a0) | ids.edge_uses_lanes(j, a1)));
+        },
+        [&](int j) { return box.overlaps(edge_boxes[j]); });
     for (int h = 0; h < hits; ++h) {
       const int j = scratch.hits[h];
       const int b0 = edges[2 * j], b1 = edges[2 * j + 1];

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/packed_boxes.hpp"
 #include "clothcd/broadphase/swept_boxes.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
@@ -81,6 +82,16 @@ class Bvh {
   [[nodiscard]] const std::vector<FlatBox>& ordered_vertex_boxes() const { return ordered_vertex_boxes_; }
   /// Edge boxes in owned_edges order (see ordered_face_boxes).
   [[nodiscard]] const std::vector<FlatBox>& ordered_edge_boxes() const { return ordered_edge_boxes_; }
+  /// Outward-rounded single-precision copies of ordered_face_boxes, for four-at-a-time pre-selection.
+  [[nodiscard]] const PackedBoxes& packed_face_boxes() const { return packed_face_boxes_; }
+  /// Outward-rounded single-precision copies of ordered_vertex_boxes.
+  [[nodiscard]] const PackedBoxes& packed_vertex_boxes() const { return packed_vertex_boxes_; }
+  /// Outward-rounded single-precision copies of ordered_edge_boxes.
+  [[nodiscard]] const PackedBoxes& packed_edge_boxes() const { return packed_edge_boxes_; }
+  /// ordered_faces as three rows (four-at-a-time shared-vertex tests).
+  [[nodiscard]] const PackedVertexIds& packed_faces() const { return packed_faces_; }
+  /// ordered_edges as two rows.
+  [[nodiscard]] const PackedVertexIds& packed_edges() const { return packed_edges_; }
   /// The three vertices of each face in face_order order (3 ints per position).
   [[nodiscard]] const std::vector<int>& ordered_faces() const { return ordered_faces_; }
   /// The two vertices of each edge in owned_edges order (2 ints per position).
@@ -116,7 +127,12 @@ class Bvh {
   std::vector<FlatBox> ordered_face_boxes_;
   std::vector<FlatBox> ordered_vertex_boxes_;
   std::vector<FlatBox> ordered_edge_boxes_;
+  PackedBoxes packed_face_boxes_;
+  PackedBoxes packed_vertex_boxes_;
+  PackedBoxes packed_edge_boxes_;
   std::vector<int> ordered_faces_;
+  PackedVertexIds packed_faces_;
+  PackedVertexIds packed_edges_;
   std::vector<int> ordered_edges_;
   double looseness_ = 0.0;
   double built_looseness_ = 0.0;

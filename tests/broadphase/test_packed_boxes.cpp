@@ -1,0 +1,111 @@
+// Packed primitive data: the single-precision box copies contain the double boxes they come from at every magnitude
+// (so a four-lane pre-selection never separates overlapping boxes), padding never overlaps, and the vertex-index lanes
+// agree with a scalar comparison.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "clothcd/broadphase/packed_boxes.hpp"
+
+namespace {
+
+using clothcd::broadphase::FlatBox;
+using clothcd::broadphase::lane_bits;
+using clothcd::broadphase::pack_box;
+using clothcd::broadphase::PackedBoxes;
+using clothcd::broadphase::PackedVertexIds;
+
+// A double of random sign, mantissa and binary exponent in [min_exp, max_exp].
+double random_double(std::mt19937_64& rng, int min_exp, int max_exp) {
+  std::uniform_real_distribution<double> mantissa(0.5, 1.0);
+  std::uniform_int_distribution<int> exponent(min_exp, max_exp);
+  const double x = std::ldexp(mantissa(rng), exponent(rng));
+  return rng() % 2 == 0 ? x : -x;
+}
+
+FlatBox box_around(double x, double y, double z, double half) {
+  return FlatBox{{x - half, y - half, z - half}, {x + half, y + half, z + half}};
+}
+
+}  // namespace
+
+TEST_CASE("packed boxes contain the double boxes at every magnitude", "[broadphase][packed]") {
+  std::mt19937_64 rng(41);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> values{0.0, -0.0, inf, -inf, 1e39, -1e39, 3.4028234e38, -3.4028234e38, 1e-45, -1e-45,
+                             std::numeric_limits<double>::denorm_min(), 1.0, -1.0};
+  for (int i = 0; i < 200000; ++i) values.push_back(random_double(rng, -1074, 1023));
+  for (int i = 0; i < 200000; ++i) values.push_back(random_double(rng, -30, 30));
+  for (const double x : values) {
+    const clothcd::broadphase::PackedBox p = pack_box(FlatBox{{x, x, x}, {x, x, x}});
+    for (int k = 0; k < 3; ++k) {
+      REQUIRE(static_cast<double>(p.lo[k]) <= x);
+      REQUIRE(static_cast<double>(p.hi[k]) >= x);
+    }
+  }
+}
+
+TEST_CASE("packed overlap lanes never separate overlapping boxes and ignore padding", "[broadphase][packed]") {
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> count(1, 13);
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double scale = std::ldexp(1.0, static_cast<int>(rng() % 200) - 100);
+    std::vector<FlatBox> boxes(count(rng));
+    for (FlatBox& b : boxes) b = box_around(scale * unit(rng), scale * unit(rng), scale * unit(rng), scale * 0.1);
+    // Queries touching a box exactly, one ulp apart from it, or anywhere.
+    FlatBox q = box_around(scale * unit(rng), scale * unit(rng), scale * unit(rng), scale * 0.2 * (unit(rng) + 1));
+    const FlatBox& target = boxes[rng() % boxes.size()];
+    if (trial % 3 == 0) q.min[0] = target.max[0];
+    if (trial % 3 == 1) q.min[0] = std::nextafter(target.max[0], 2 * std::abs(target.max[0]) + 1);
+    PackedBoxes packed;
+    packed.assign(boxes);
+    REQUIRE(packed.size() == static_cast<int>(boxes.size()));
+    const auto packed_q = pack_box(q);
+    int passes = 0, overlaps = 0;
+    for (int j = 0; j < packed.size(); j += 4) {
+      const unsigned bits = lane_bits(packed.overlap_lanes(j, packed_q));
+      for (int k = 0; k < 4; ++k) {
+        const bool lane = ((bits >> k) & 1u) != 0;
+        if (j + k >= packed.size()) {
+          REQUIRE_FALSE(lane);
+          continue;
+        }
+        if (boxes[j + k].overlaps(q)) {
+          REQUIRE(lane);
+          ++overlaps;
+        }
+        passes += lane ? 1 : 0;
+      }
+    }
+    REQUIRE(passes >= overlaps);
+  }
+}
+
+TEST_CASE("packed vertex-index lanes agree with a scalar comparison", "[broadphase][packed]") {
+  std::mt19937_64 rng(47);
+  std::uniform_int_distribution<int> vertex(0, 9);
+  for (const int per : {2, 3}) {
+    std::vector<int> ids(per * 11);
+    for (int& id : ids) id = vertex(rng);
+    PackedVertexIds packed;
+    packed.assign(ids, per);
+    const int primitives = static_cast<int>(ids.size()) / per;
+    for (int v = 0; v < 10; ++v) {
+      for (int j = 0; j < primitives; ++j) {
+        const unsigned bits =
+            lane_bits(per == 2 ? packed.edge_uses_lanes(j, v) : packed.face_uses_lanes(j, v));
+        for (int k = 0; k < 4; ++k) {
+          bool uses = false;
+          if (j + k < primitives) {
+            for (int r = 0; r < per; ++r) uses = uses || ids[per * (j + k) + r] == v;
+          }
+          REQUIRE((((bits >> k) & 1u) != 0) == uses);
+        }
+      }
+    }
+  }
+}
