@@ -56,9 +56,12 @@ class QuaternaryHeap {
   /// Drops every entry for which `keep(entry)` is false and restores the heap order (O(n)).
   template <typename Keep>
   void retain_if(Keep keep) {
+    // Every entry is copied and only the kept ones advance the end: no branch on `keep`, which is unpredictable.
     std::size_t kept = kRoot;
-    for (std::size_t i = kRoot; i < entries_.size(); ++i)
-      if (keep(entries_[i])) entries_[kept++] = entries_[i];
+    for (std::size_t i = kRoot; i < entries_.size(); ++i) {
+      entries_[kept] = entries_[i];
+      kept += std::size_t(keep(entries_[i]));
+    }
     entries_.resize(kept);
     heapify();
   }
@@ -98,9 +101,13 @@ class QuaternaryHeap {
   // and mispredicted branches cost more than the comparisons.
   [[nodiscard]] std::size_t least_of_four(std::size_t first) const {
     const Entry* c = &entries_[first];
-    const std::size_t low = c[1].cost < c[0].cost ? 1 : 0;
-    const std::size_t high = c[3].cost < c[2].cost ? 3 : 2;
-    return first + (c[high].cost < c[low].cost ? high : low);
+    const bool low_is_1 = c[1].cost < c[0].cost;
+    const bool high_is_3 = c[3].cost < c[2].cost;
+    const auto low_cost = low_is_1 ? c[1].cost : c[0].cost;
+    const auto high_cost = high_is_3 ? c[3].cost : c[2].cost;
+    const std::size_t low = low_is_1, high = 2 + std::size_t(high_is_3);
+    // Arithmetic, as GCC turns a ?: on the indices into a branch.
+    return first + low + (high - low) * std::size_t(high_cost < low_cost);
   }
 
   // The least of the entries first .. n - 1 (fewer than four, at least one).

@@ -192,7 +192,7 @@ class Simplifier {
   // False for a heap entry whose vertices were contracted away or changed since it was pushed (one small array, so the
   // purges' scans over the whole heap mostly hit the cache).
   [[nodiscard]] bool is_current(const Candidate& c) const {
-    return version_[size_t(c.u)] == c.stamp_u && version_[size_t(c.v)] == c.stamp_v;
+    return (version_[size_t(c.u)] == c.stamp_u) & (version_[size_t(c.v)] == c.stamp_v);  // &: no unpredictable branch
   }
   [[nodiscard]] bool alive_vertex(int v) const { return version_[size_t(v)] != kDeadVersion; }
 
