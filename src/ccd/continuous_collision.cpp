@@ -36,7 +36,10 @@ namespace {
 using detail::certain_sign;
 using detail::Interval;
 
-constexpr int kMaxDepth = 16;           // thickness 0: pieces down to 2^-16 of the step before the exact fallback
+// Thickness 0: pieces down to 2^-8 of the step before the exact tiers. On the public handcrafted queries no piece is
+// decided deeper than 8 levels: what is still undecided there is an exact touch or a miss by a rounding error, which
+// no subdivision decides, so deeper pieces only delayed the exact tiers (16 levels: 12% more instructions).
+constexpr int kMaxDepth = 8;
 constexpr int kToiBisections = 24;      // time-of-impact lower bound tightened to about 6e-8 of the step
 // Beyond this magnitude intermediate products could overflow; such queries go straight to the exact reference.
 constexpr double kMaxFastCoordinate = 0x1p100;
