@@ -84,7 +84,14 @@ class ListPool {
   void retain_if(int i, Keep keep) {
     Block& b = blocks_[std::size_t(i)];
     int* first = data_.data() + b.begin;
-    b.size = std::uint32_t(std::remove_if(first, first + b.size, [&](int x) { return !keep(x); }) - first);
+    // Every entry is copied and only kept ones advance the end: no branch on `keep`, which may be unpredictable.
+    std::uint32_t kept = 0;
+    for (std::uint32_t k = 0; k < b.size; ++k) {
+      const int x = first[k];
+      first[kept] = x;
+      kept += std::uint32_t(bool(keep(x)));
+    }
+    b.size = kept;
   }
 
   /// Empties list i (its block stays its own).

@@ -270,7 +270,7 @@ class Simplifier {
         for (int w : faces_[size_t(f)]) ++count[size_t(w)];
       for (int f : around) {
         const auto& t = faces_[size_t(f)];
-        const int k = t[0] == int(a) ? 0 : (t[1] == int(a) ? 1 : 2);
+        const int k = corner_of(t, int(a));
         edge_faces_[size_t(f)][size_t(k)] = count[size_t(t[size_t((k + 1) % 3)])];
       }
       for (int f : around)
@@ -347,7 +347,7 @@ class Simplifier {
       for (int k = 0; k < 3; ++k) {
         const int a = faces_[f][size_t(k)], b = faces_[f][size_t((k + 1) % 3)];
         // Each interior edge appears in two faces: take it once, from the face where it runs upwards.
-        if (a < b || edge_faces_[f][size_t(k)] == 1) {
+        if ((a < b) | (edge_faces_[f][size_t(k)] == 1)) {
           if (locked_[size_t(a)] || locked_[size_t(b)]) continue;
           const Quadric q = sum(quadric_[size_t(a)], quadric_[size_t(b)]);
           heap_.push_unordered({float(place(q, position_[size_t(a)], position_[size_t(b)]).cost), a, b, 0, 0});
@@ -392,13 +392,18 @@ class Simplifier {
   void mark_neighbours(int v, unsigned value) {
     for (int f : live_faces_of(v)) {
       for (int w : faces_[size_t(f)]) {
-        if (w != v) mark_[size_t(w)] = value;
+        const unsigned old = mark_[size_t(w)];  // written back unchanged for v: a select, not a branch
+        mark_[size_t(w)] = w != v ? value : old;
       }
     }
   }
 
   [[nodiscard]] static bool alive(const std::array<int, 3>& t) { return t[0] != kDeadFace; }
-  [[nodiscard]] static bool has(const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || t[2] == v; }
+  // Bitwise | and &, here and in the loops of the checks below: these tests go either way at random, and a
+  // mispredicted branch costs more than evaluating every operand.
+  [[nodiscard]] static bool has(const std::array<int, 3>& t, int v) { return (t[0] == v) | (t[1] == v) | (t[2] == v); }
+  // The corner (0, 1 or 2) of t that is v, which t must have.
+  [[nodiscard]] static int corner_of(const std::array<int, 3>& t, int v) { return int(t[1] == v) + 2 * int(t[2] == v); }
 
   // Rejects contractions that would change the topology badly or fold the surface (see simplify_qem's contract).
   bool contraction_is_valid(int u, int v, const Eigen::Vector3d& p) {
@@ -415,10 +420,10 @@ class Simplifier {
     int common = 0;
     for (int f : vertex_faces_[v]) {
       for (int w : faces_[size_t(f)]) {
-        if (w != v && w != u && mark_[size_t(w)] == of_u) {
-          mark_[size_t(w)] = common_mark;
-          ++common;
-        }
+        const unsigned old = mark_[size_t(w)];
+        const bool first_seen = (w != v) & (w != u) & (old == of_u);
+        mark_[size_t(w)] = first_seen ? common_mark : old;
+        common += int(first_seen);
       }
     }
     if (common != shared) return false;
@@ -431,7 +436,7 @@ class Simplifier {
     for (int f : vertex_faces_[moving]) {
       const auto& t = faces_[size_t(f)];
       if (has(t, other)) continue;
-      const int k = t[0] == moving ? 0 : (t[1] == moving ? 1 : 2);
+      const int k = corner_of(t, moving);
       const int a = t[size_t((k + 1) % 3)], b = t[size_t((k + 2) % 3)];
       const Eigen::Vector3d& pa = position_[size_t(a)];
       const Eigen::Vector3d& pb = position_[size_t(b)];
@@ -442,7 +447,7 @@ class Simplifier {
       const double dot = before.dot(after);
       if (dot <= 0 || dot * dot < settings_.min_normal_cos * settings_.min_normal_cos * before.squaredNorm() * after_norm2)
         return false;
-      if (mark_[size_t(a)] == common_mark && mark_[size_t(b)] == common_mark) {
+      if ((mark_[size_t(a)] == common_mark) & (mark_[size_t(b)] == common_mark)) {
         for (int g : vertex_faces_[other]) {
           if (has(faces_[size_t(g)], a) && has(faces_[size_t(g)], b)) return false;
         }
@@ -475,18 +480,22 @@ class Simplifier {
     const auto faces_v = live_faces_of(v);
     // Gather the neighbours and start loading their quadrics (two cache lines each, mostly cold) before costing any
     // pair, so the loads overlap instead of stalling one push after another.
+    // Each corner is written to the list and kept only when new (v itself is marked too, harmlessly): no branch.
     const unsigned pushed = ++epoch_;
-    neighbours_.clear();
+    neighbours_.resize(3 * size_t(faces_v.end() - faces_v.begin()));
+    size_t count = 0;
     for (int f : faces_v) {
       for (int w : faces_[size_t(f)]) {
-        if (w == v || mark_[size_t(w)] == pushed) continue;
+        const bool fresh = (w != v) & (mark_[size_t(w)] != pushed);
         mark_[size_t(w)] = pushed;
-        neighbours_.push_back(w);
+        neighbours_[count] = w;
+        count += size_t(fresh);
         const char* bytes = reinterpret_cast<const char*>(&quadric_[size_t(w)]);
         __builtin_prefetch(bytes);
         __builtin_prefetch(bytes + sizeof(Quadric) - 1);
       }
     }
+    neighbours_.resize(count);
     for (int w : neighbours_) push_pair(v, w);
     if (!partners_.empty()) requeue_partners(u, v, pushed);
   }
