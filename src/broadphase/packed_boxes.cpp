@@ -1,4 +1,4 @@
-// Outward rounding from double to float: a bound moved outwards by 2^-22 of its magnitude (plus a tiny absolute term
+// Outward rounding from double to float: a bound moved outwards by 2^-22 of its magnitude (plus 1e-30, a normal float,
 // for bounds near zero) before the round-to-nearest conversion cannot come back past the original value, since that
 // conversion moves it by at most 2^-24 of its magnitude (or half a subnormal step). Bounds beyond the float range are
 // clamped to the largest float on the side that keeps them conservative (infinity on the outer side is fine).
@@ -16,17 +16,19 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr double kBeyondFloat = 1e39;
 
 // Bounds are first clamped to +-1e39 (beyond the float range, so the clamp never crosses a float bound and maps
-// infinities to finite values), all without branches.
+// infinities to finite values). The conditional expressions compile to min/max instructions, not branches.
 float round_down(double x) {
-  const double clamped = std::min(std::max(x, -kBeyondFloat), kBeyondFloat);
-  const double moved = clamped - (std::abs(clamped) * 0x1p-22 + 1e-38);
-  return static_cast<float>(std::min(moved, kFloatMax));
+  double v = x < -kBeyondFloat ? -kBeyondFloat : x;
+  v = v > kBeyondFloat ? kBeyondFloat : v;
+  v -= std::fabs(v) * 0x1p-22 + 1e-30;
+  return static_cast<float>(v > kFloatMax ? kFloatMax : v);
 }
 
 float round_up(double x) {
-  const double clamped = std::min(std::max(x, -kBeyondFloat), kBeyondFloat);
-  const double moved = clamped + (std::abs(clamped) * 0x1p-22 + 1e-38);
-  return static_cast<float>(std::max(moved, -kFloatMax));
+  double v = x < -kBeyondFloat ? -kBeyondFloat : x;
+  v = v > kBeyondFloat ? kBeyondFloat : v;
+  v += std::fabs(v) * 0x1p-22 + 1e-30;
+  return static_cast<float>(v < -kFloatMax ? -kFloatMax : v);
 }
 
 }  // namespace
