@@ -33,13 +33,32 @@ inline std::uint32_t morton_code(const Eigen::Vector3d& p) {
   return code;
 }
 
-/// Indices of `points` (unit cube) sorted by Morton code; equal codes keep their input order.
+/// Indices of `points` (unit cube) sorted by Morton code; equal codes keep their input order. A least-significant-digit
+/// radix sort, three stable passes of 10 bits: no comparisons, so no mispredicted branches as in a comparison sort.
 inline std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& points) {
-  std::vector<std::pair<std::uint32_t, int>> keyed(points.size());
-  for (size_t i = 0; i < points.size(); ++i) keyed[i] = {morton_code(points[i]), static_cast<int>(i)};
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<int> order(points.size());
-  for (size_t i = 0; i < keyed.size(); ++i) order[i] = keyed[i].second;
+  const std::size_t n = points.size();
+  std::vector<std::uint32_t> code(n), code_next(n);
+  std::vector<int> order(n), order_next(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    code[i] = morton_code(points[i]);
+    order[i] = static_cast<int>(i);
+  }
+  constexpr int kDigitBits = 10;
+  constexpr std::uint32_t kDigitMask = (1u << kDigitBits) - 1;
+  std::vector<std::size_t> slot(std::size_t(1) << kDigitBits);
+  for (int shift = 0; shift < 30; shift += kDigitBits) {
+    std::fill(slot.begin(), slot.end(), 0);
+    for (std::uint32_t c : code) ++slot[(c >> shift) & kDigitMask];
+    std::size_t start = 0;
+    for (std::size_t& s : slot) start += std::exchange(s, start);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t to = slot[(code[i] >> shift) & kDigitMask]++;
+      code_next[to] = code[i];
+      order_next[to] = order[i];
+    }
+    code.swap(code_next);
+    order.swap(order_next);
+  }
   return order;
 }
 
