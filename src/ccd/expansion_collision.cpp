@@ -17,6 +17,9 @@
 //     When P may vanish at t* (touching exactly, or missing by far less than rounding), the pseudo-division
 //     lc(P)^k D = Q P + R gives Q(t*) P(t*) = -R(t*); with Q and R at most linear, their signs at t* come from their
 //     rational roots placed against the bracket and t* (exact homogeneous evaluation, after scaling by powers of two).
+//   - A bracketed root where some sign is not filtered out is first tried as an exact rational time: the root of a
+//     linear D (or sign polynomial), or a time where two points have the same coordinate on one axis and D vanishes
+//     (the sliding and axis-aligned touching contacts). Signs at a rational time are exact homogeneous sums.
 //   - D identically zero (coplanar for the whole step): t = 0 first, then 1 and every root of every sign polynomial,
 //     earliest first; roots of linear and quadratic sign polynomials are bracketed on pieces where they are monotone
 //     (split at the vertex), a double root as the exact rational -p1 / (2 p2).
@@ -224,6 +227,7 @@ struct Candidate {
   const Poly* root_of = nullptr;  // the polynomial whose root is bracketed (D, or a sign polynomial when D == 0)
   double d_lo = 0.0, d_hi = 0.0;  // estimates of root_of at lo and hi
   bool bisect_next = false;
+  bool pin_tried = false;  // whether a rational alignment time was tried as the bracketed root
 };
 
 Candidate point_at(const Expansion& t) {
@@ -349,18 +353,18 @@ std::optional<int> sign_at_rational(const Poly& p, Expansion num, Expansion den)
   t_range.add(den);
   for (int i = 0; i <= n; ++i) p_range.add(p[static_cast<std::size_t>(i)]);
   if (n * t_range.half_width() + p_range.half_width() + 8 > 1000) return std::nullopt;
-  num = num.times_power_of_two(t_range.centring_shift());
-  den = den.times_power_of_two(t_range.centring_shift());
-  std::array<Expansion, 4> num_power, den_power;
-  num_power[0] = den_power[0] = Expansion(1.0);
-  for (int i = 1; i <= n; ++i) {
-    num_power[i] = num_power[i - 1] * num;
-    den_power[i] = den_power[i - 1] * den;
+  num = num.times_power_of_two(t_range.centring_shift()).compressed();
+  den = den.times_power_of_two(t_range.centring_shift()).compressed();
+  // sum = den^n p(num / den) by Horner's rule in homogeneous form: s <- s num + p_i den^(n - i), from s = p_n.
+  const auto coefficient = [&](int i) {
+    return p[static_cast<std::size_t>(i)].times_power_of_two(p_range.centring_shift());
+  };
+  Expansion sum = coefficient(n);
+  Expansion den_power(1.0);
+  for (int i = n - 1; i >= 0; --i) {
+    den_power = den_power * den;
+    sum = sum * num + coefficient(i) * den_power;
   }
-  Expansion sum;
-  for (int i = 0; i <= n; ++i)
-    sum = sum + p[static_cast<std::size_t>(i)].times_power_of_two(p_range.centring_shift()) * num_power[i] *
-                    den_power[n - i];
   return n % 2 == 1 && den.sign() < 0 ? -sum.sign() : sum.sign();
 }
 
@@ -563,6 +567,18 @@ class System {
     const int u = (k + 1) % 3, v = (k + 2) % 3;
     return (w_at(end, a, u) * w_at(end, b, u) + w_at(end, a, v) * w_at(end, b, v)).sign();
   }
+  // The time when points i and j have the same coordinate on axis k, num / den with den > 0; false when their
+  // coordinates on that axis move in parallel.
+  bool alignment_time(int i, int j, int k, Expansion& num, Expansion& den) const {
+    num = Expansion::difference(c_[j][k], c_[i][k]);
+    den = Expansion::difference(c_[i + 4][k], c_[i][k]) - Expansion::difference(c_[j + 4][k], c_[j][k]);
+    if (den.is_zero()) return false;
+    if (den.sign() < 0) {
+      num = -num;
+      den = -den;
+    }
+    return true;
+  }
   const Poly& d() const { return d_; }
   int points() const { return points_; }
   // a < b.
@@ -598,6 +614,40 @@ class System {
   const Poly* dot_[3][4][4] = {};
 };
 
+// Makes the bracketed candidate c the exact rational time of its root when that is cheap to find: the root of a
+// linear root_of, or a time in the bracket where two of the points have the same coordinate on one axis and root_of
+// vanishes (touching contacts of axis-aligned or sliding geometry). root_of has exactly one root in the bracket, so
+// that time is it. Signs at c are then exact homogeneous sums, with no refinement or pseudo-division.
+void pin_rational_root(Candidate& c, const System& system) {
+  c.pin_tried = true;
+  const Poly& p = *c.root_of;
+  if (degree(p) == 1) {
+    c.rational = true;
+    const bool negate = p[1].sign() < 0;
+    c.num = negate ? p[0] : -p[0];
+    c.den = negate ? -p[1] : p[1];
+    return;
+  }
+  const double lo = c.lo.estimate(), hi = c.hi.estimate();
+  const double slack = 1e-9 * (hi - lo) + 1e-15 * (std::fabs(lo) + std::fabs(hi)) + 1e-300;  // estimates only
+  Expansion num, den;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) {
+      for (int k = 0; k < 3; ++k) {
+        if (!system.alignment_time(i, j, k, num, den)) continue;
+        const double r = num.estimate() / den.estimate();
+        if (!(r > lo - slack && r < hi + slack)) continue;
+        if ((num - den * c.lo).sign() <= 0 || (den * c.hi - num).sign() <= 0) continue;
+        if (sign_at_rational(*c.root_of, num, den) != std::optional<int>(0)) continue;
+        c.rational = true;
+        c.num = num;
+        c.den = den;
+        return;
+      }
+    }
+  }
+}
+
 // The reference's predicate (exact_reference.cpp) at one candidate, with signs computed on first use.
 class Predicate {
  public:
@@ -626,6 +676,9 @@ class Predicate {
  private:
   int sign_of(int& cached, const Poly& p) {
     if (cached == kUnknown) {
+      if (!failed_ && !candidate_.pin_tried && !candidate_.point && !candidate_.rational && degree(p) >= 1 &&
+          filtered_sign(candidate_, p, degree(p)) == 0)
+        pin_rational_root(candidate_, system_);
       const std::optional<int> s = failed_ ? std::optional<int>(0) : sign_at(candidate_, p);
       failed_ = failed_ || !s;
       cached = s.value_or(0);

@@ -251,3 +251,44 @@ TEST_CASE("expansion tier decides exact touching and whole-step coplanar motion"
     CHECK_FALSE(result.exact_fallback);
   }
 }
+
+TEST_CASE("expansion tier decides touching at a time where points align on an axis", "[ccd][expansion][differential]") {
+  // The handcrafted queries' sliding contacts: a face that stays parallel to the plane y = 0 (static, so D is linear,
+  // or moving with one common y velocity and deforming in x and z, so D is a cubic with the factor v_y - f_y) and a
+  // vertex whose x and z stay on the middle of an edge, on a corner, or a grid step inside or outside the face. The
+  // contact time, where the vertex's y meets the face's, is a rational like 1/3 off the dyadic grid.
+  std::mt19937 random(6601u);
+  std::uniform_int_distribution<int> step(-3, 3), where(0, 3), speed(1, 4);
+  const auto grid = [&] { return Vector3d(2 * step(random), 0.0, 2 * step(random)); };
+  Tally tally;
+  for (int i = 0; i < 300; ++i) {
+    const bool static_face = i % 2 == 0;
+    ccd::CcdQuery q;
+    q.kind = PairKind::VertexFace;
+    const double face_y0 = step(random), face_vy = static_face ? 0.0 : step(random);
+    for (int j = 1; j < 4; ++j) {
+      q.start[j] = grid();
+      q.end[j] = static_face ? q.start[j] : grid();
+      q.start[j].y() = face_y0;
+      q.end[j].y() = face_y0 + face_vy;
+    }
+    // The vertex's x and z, at every time: on edge 1-2's middle, on corner 1, one step beside corner 1, or the
+    // centroid-ish point (1 + 1 + 2 + 3) / 4 of the face.
+    const int spot = where(random);
+    const auto in_plane = [&](const std::array<Vector3d, 4>& p) -> Vector3d {
+      if (spot == 0) return 0.5 * (p[1] + p[2]);
+      if (spot == 1) return p[1];
+      if (spot == 2) return p[1] + Vector3d(1.0, 0.0, 0.0);
+      return 0.25 * (2.0 * p[1] + p[2] + p[3]);
+    };
+    q.start[0] = in_plane(q.start);
+    q.end[0] = in_plane(q.end);
+    // y crosses the face's plane at t = 1 / (k + 1): start 1 above it, closing in at k + 1 units per step.
+    const int k = speed(random);
+    q.start[0].y() = face_y0 + 1.0;
+    q.end[0].y() = face_y0 + face_vy + 1.0 - (k + 1);
+    check_tier(q, tally);
+  }
+  CHECK(tally.hits > tally.queries / 4);
+  CHECK(tally.answered > tally.queries * 95 / 100);
+}
