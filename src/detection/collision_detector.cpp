@@ -175,12 +175,11 @@ struct CollisionDetector::Impl {
     for (std::size_t i = 0; i < batch.size(); ++i) todo.push_back(i);
   }
 
-  // Fills the CCD query and the vertex references of the pair at position i of the batch.
-  void gather(const Vertices& start, const Vertices& end, std::size_t i) {
+  // Fills `q` with the CCD query and the batch's vertex references with those of the pair at position i.
+  void gather(const Vertices& start, const Vertices& end, std::size_t i, ccd::CcdQuery& q) {
     const broadphase::CandidateSet& candidates = batch.candidates;
     const std::size_t vf = candidates.vertex_face.size();
     std::array<VertexRef, 4>& r = batch.refs[i];
-    ccd::CcdQuery& q = batch.queries[i];
     if (i < vf) {
       const auto& c = candidates.vertex_face[i];
       const auto& faces = topology_of(c.face_body).faces;
@@ -220,7 +219,7 @@ struct CollisionDetector::Impl {
     std::vector<std::uint8_t>& keep = batch.keep;
     std::vector<ccd::CcdResult>& results = batch.results;
     if (network) {
-      for_each_index(total, settings.parallel, [&](std::size_t i) { gather(start, end, i); });
+      for_each_index(total, settings.parallel, [&](std::size_t i) { gather(start, end, i, queries[i]); });
       const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep);
       stats.network_dropped = n.dropped;
       stats.network_overruled = n.overruled;
@@ -229,9 +228,12 @@ struct CollisionDetector::Impl {
       stats.network_filters_ms = n.filters_ms;
     } else {
       for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
+        // The query is built on the stack and stored only for the few pairs that survive the filters.
         const std::size_t i = todo[j];
-        gather(start, end, i);
-        keep[i] = culls(queries[i], ccd_settings) ? 0 : 1;
+        ccd::CcdQuery query;
+        gather(start, end, i, query);
+        keep[i] = culls(query, ccd_settings) ? 0 : 1;
+        if (keep[i]) queries[i] = query;
       });
     }
     stats.culling_ms = milliseconds_since(t);

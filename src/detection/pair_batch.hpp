@@ -19,7 +19,7 @@ namespace clothcd::detail {
 /// verdict (keep) and CCD result.
 struct PairBatch {
   broadphase::CandidateSet candidates;         ///< The pairs.
-  std::vector<ccd::CcdQuery> queries;          ///< Positions of the pairs tested by the last call (not of reused ones).
+  std::vector<ccd::CcdQuery> queries;          ///< Positions of the pairs sent to the CCD (all in network mode).
   std::vector<std::array<VertexRef, 4>> refs;  ///< Vertices of each pair.
   std::vector<std::uint8_t> keep;              ///< 1 when the pair survived culling.
   std::vector<ccd::CcdResult> results;         ///< CCD result (Separated when culled).
