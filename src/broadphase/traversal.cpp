@@ -128,8 +128,8 @@ int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4
   if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
   int n = 0;
   for (int j = begin; j < end; j += 4) {
-    unsigned mask = mask4(j);
-    if (end - j < 4) mask &= (1u << (end - j)) - 1u;
+    const int lanes = end - j < 4 ? end - j : 4;  // a select, not a branch: the last group of a range is often short
+    unsigned mask = mask4(j) & ((1u << lanes) - 1u);
     while (mask != 0) {
       const int k = j + __builtin_ctz(mask);
       mask &= mask - 1u;
