@@ -81,16 +81,40 @@ std::size_t compress_terms(const double* in, std::size_t n, double* out) {
 
 }  // namespace
 
-void sum_into(const Expansion& e, const Expansion& f, Expansion& h) {
-  h.size_ = 0;
+void sum_into(const Expansion& e, const Expansion& f, double f_sign, Expansion& h) {
   if (e.size_ == 0 || f.size_ == 0) {
-    h = e.size_ == 0 ? f : e;
+    if (e.size_ == 0) {
+      for (std::size_t i = 0; i < f.size_; ++i) h.terms_[i] = f_sign * f.terms_[i];
+      h.size_ = f.size_;
+    } else {
+      h = e;
+    }
+    return;
+  }
+  if (e.size_ == 1 && f.size_ == 1) {  // the common short case: one two-sum
+    double x, y;
+    two_sum(e.terms_[0], f_sign * f.terms_[0], x, y);
+    h.size_ = 0;
+    if (y != 0.0) h.terms_[h.size_++] = y;
+    if (x != 0.0) h.terms_[h.size_++] = x;
     return;
   }
   double merged[2 * Expansion::kCapacity];
-  const auto by_magnitude = [](double a, double b) { return std::fabs(a) < std::fabs(b); };
   const std::size_t count = e.size_ + f.size_;
-  std::merge(e.terms_, e.terms_ + e.size_, f.terms_, f.terms_ + f.size_, merged, by_magnitude);
+  {  // merge by magnitude
+    std::size_t i = 0, j = 0, k = 0;
+    while (i < e.size_ && j < f.size_) {
+      const double fj = f_sign * f.terms_[j];
+      if (std::fabs(fj) < std::fabs(e.terms_[i])) {
+        merged[k++] = fj;
+        ++j;
+      } else {
+        merged[k++] = e.terms_[i++];
+      }
+    }
+    while (i < e.size_) merged[k++] = e.terms_[i++];
+    while (j < f.size_) merged[k++] = f_sign * f.terms_[j++];
+  }
   // The chain of two-sums writes straight into h when it fits, else over the merged terms already consumed (index
   // kept <= i), compressed afterwards.
   double* out = count <= Expansion::kCapacity ? h.terms_ : merged;
@@ -126,7 +150,7 @@ Expansion Expansion::difference(double a, double b) {
 
 Expansion operator+(const Expansion& a, const Expansion& b) {
   Expansion r;
-  sum_into(a, b, r);
+  sum_into(a, b, 1.0, r);
   return r;
 }
 
@@ -137,7 +161,9 @@ Expansion Expansion::operator-() const {
 }
 
 Expansion operator-(const Expansion& a, const Expansion& b) {
-  return a + (-b);
+  Expansion r;
+  sum_into(a, b, -1.0, r);
+  return r;
 }
 
 Expansion Expansion::scaled(double b) const {

@@ -61,7 +61,7 @@ class Expansion {
     if (size_ == kCapacity) throw ExpansionCapacityExceeded();
     terms_[size_++] = x;
   }
-  friend void sum_into(const Expansion& e, const Expansion& f, Expansion& h);
+  friend void sum_into(const Expansion& e, const Expansion& f, double f_sign, Expansion& h);
 
   std::size_t size_ = 0;
   double terms_[kCapacity];  // terms_[0..size_): non-overlapping, increasing magnitude, no zeros
