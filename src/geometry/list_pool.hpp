@@ -22,6 +22,8 @@ class ListPool {
       blocks_[i] = {std::uint32_t(total), 0, std::uint32_t(room[i])};
       total += std::size_t(room[i]);
     }
+    // Room for moved lists up front: growing the vector would copy every list and touch twice the memory.
+    data_.reserve(2 * total);
     data_.assign(total, 0);
   }
 

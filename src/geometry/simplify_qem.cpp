@@ -259,8 +259,9 @@ class Simplifier {
     }
   }
 
-  // edge_faces_[f][k]: how many live faces hold the edge from corner k to corner k + 1 of face f. Counted per start
-  // vertex a: every face of a adds one to each of its two other corners, so a neighbour's count is its edge's.
+  // edge_faces_[f][k]: how many live faces (up to 255: only 1, 2 and more matter) hold the edge from corner k to corner
+  // k + 1 of face f. Counted per start vertex a: every face of a adds one to each of its two other corners, so a
+  // neighbour's count is its edge's.
   void count_edge_faces() {
     edge_faces_.assign(faces_.size(), {0, 0, 0});
     std::vector<int> count(position_.size(), 0);
@@ -271,7 +272,7 @@ class Simplifier {
       for (int f : around) {
         const auto& t = faces_[size_t(f)];
         const int k = corner_of(t, int(a));
-        edge_faces_[size_t(f)][size_t(k)] = count[size_t(t[size_t((k + 1) % 3)])];
+        edge_faces_[size_t(f)][size_t(k)] = std::uint8_t(std::min(count[size_t(t[size_t((k + 1) % 3)])], 255));
       }
       for (int f : around)
         for (int w : faces_[size_t(f)]) count[size_t(w)] = 0;
@@ -560,7 +561,7 @@ class Simplifier {
   std::vector<Quadric> quadric_;
   std::vector<std::array<int, 3>> faces_;
   std::vector<int> internal_face_;  // input face -> its index here (ordered by least vertex)
-  std::vector<std::array<int, 3>> edge_faces_;  // live faces per face edge, at the start (count_edge_faces)
+  std::vector<std::array<std::uint8_t, 3>> edge_faces_;  // live faces per face edge at the start, at most 255
   std::vector<std::uint16_t> version_;  // kDeadVersion once contracted away
   std::vector<char> locked_, boundary_;
   std::vector<unsigned> mark_;
