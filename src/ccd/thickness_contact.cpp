@@ -9,11 +9,16 @@
 //   - proven hit when d(a) <= h - margin at its start (everything before was cleared, so toi = a), or when d(b) is
 //     (toi = a + (d(a) - h - margin) / L, before which the bound keeps the distance above h);
 //   - at the depth or evaluation limit a ConservativeHit at a, upgraded to Hit when a later sample already proved contact.
+// Before a piece is split, it is also cleared by a projection: along the gap direction n of the closest points at either
+// end, every n . (x_i - y_j) (points x of the first primitive, y of the second) is linear in t, so if all of them exceed
+// (h + margin) |n| at both ends, they do on the whole piece, and so does the distance. This clears in one step the
+// pieces of a pair sliding past at just over h, which the Lipschitz bound only clears after many splits.
 // margin covers the double evaluation of positions and distances (a few ulps of the coordinates) and the 1e-8
 // degeneracy cut-off of closest_points.cpp (relative to the pair's extent).
 #include "ccd/thickness_contact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -53,19 +58,54 @@ struct Search {
   double toi = 1.0;
 };
 
-double distance_at(Search& search, double t) {
+// The positions at one time, their distance and the gap between their closest points (first minus second).
+struct Sample {
+  std::array<Eigen::Vector3d, 4> x;
+  double distance = 0.0;
+  Eigen::Vector3d gap = Eigen::Vector3d::Zero();
+};
+
+Sample sample_at(Search& search, double t) {
   ++search.evaluations;
-  const double d = closest_at(search.query, search.geometry, t).distance;
-  search.proven = search.proven || d <= search.hit_below;
-  return d;
+  const CcdQuery& query = search.query;
+  Sample sample;
+  for (int i = 0; i < 4; ++i)
+    sample.x[i] = t == 1.0 ? query.end[i] : Eigen::Vector3d(search.geometry.start[i] + t * search.geometry.delta[i]);
+  const ClosestPoints closest = query.kind == PairKind::VertexFace
+                                    ? point_triangle_closest(sample.x[0], sample.x[1], sample.x[2], sample.x[3])
+                                    : segment_segment_closest(sample.x[0], sample.x[1], sample.x[2], sample.x[3]);
+  search.proven = search.proven || closest.distance <= search.hit_below;
+  sample.distance = closest.distance;
+  sample.gap = closest.first - closest.second;
+  return sample;
 }
 
-Outcome search_piece(Search& search, double a, double b, double da, double db, int depth) {
+// True when every n . (x_i - y_j) exceeds clear_above |n| in both samples (see the file comment).
+bool projection_clears(const Search& search, const Eigen::Vector3d& n, const Sample& sa, const Sample& sb) {
+  const double length = n.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return false;
+  const double threshold = search.clear_above * length * (1.0 + 1e-12);
+  const int split = search.query.kind == PairKind::VertexFace ? 1 : 2;
+  for (const Sample* sample : {&sa, &sb}) {
+    std::array<double, 4> z;
+    for (int i = 0; i < 4; ++i) z[i] = n.dot(sample->x[i]);
+    for (int i = 0; i < split; ++i)
+      for (int j = split; j < 4; ++j)
+        if (!(z[i] - z[j] > threshold)) return false;
+  }
+  return true;
+}
+
+Outcome search_piece(Search& search, double a, double b, const Sample& sa, const Sample& sb, int depth) {
+  const double da = sa.distance, db = sb.distance;
   if (da <= search.hit_below) {
     search.toi = a;
     return Outcome::Hit;
   }
   if (0.5 * (da + db - search.lipschitz * (b - a)) > search.clear_above) return Outcome::Clear;
+  if (db > search.hit_below && (projection_clears(search, sa.gap, sa, sb) || projection_clears(search, sb.gap, sa, sb))) {
+    return Outcome::Clear;
+  }
   if (db <= search.hit_below) {
     const double lead = search.lipschitz > 0.0 ? (da - search.clear_above) / search.lipschitz : 0.0;
     search.toi = std::clamp(a + std::max(0.0, lead) * (1.0 - 1e-12), a, b);
@@ -76,10 +116,10 @@ Outcome search_piece(Search& search, double a, double b, double da, double db, i
     search.toi = a;
     return Outcome::Undecided;
   }
-  const double dm = distance_at(search, mid);
-  const Outcome left = search_piece(search, a, mid, da, dm, depth + 1);
+  const Sample sm = sample_at(search, mid);
+  const Outcome left = search_piece(search, a, mid, sa, sm, depth + 1);
   if (left != Outcome::Clear) return left;
-  return search_piece(search, mid, b, dm, db, depth + 1);
+  return search_piece(search, mid, b, sm, sb, depth + 1);
 }
 
 double max_relative_displacement(const CcdQuery& query, const Geometry& g) {
@@ -131,9 +171,9 @@ CcdResult thick_contact(const CcdQuery& query, double thickness) {
   search.lipschitz = max_relative_displacement(query, geometry) * (1.0 + 1e-12);
   search.clear_above = thickness + margin;
   search.hit_below = thickness - margin;
-  const double d0 = distance_at(search, 0.0);
-  const double d1 = distance_at(search, 1.0);
-  const Outcome outcome = search_piece(search, 0.0, 1.0, d0, d1, 0);
+  const Sample s0 = sample_at(search, 0.0);
+  const Sample s1 = sample_at(search, 1.0);
+  const Outcome outcome = search_piece(search, 0.0, 1.0, s0, s1, 0);
   CcdResult result;
   if (outcome == Outcome::Clear) return result;
   result.hit = true;
