@@ -48,9 +48,12 @@ struct Quadric {
     return {a00 * p.x() + a01 * p.y() + a02 * p.z(), a01 * p.x() + a11 * p.y() + a12 * p.z(),
             a02 * p.x() + a12 * p.y() + a22 * p.z()};
   }
-  [[nodiscard]] double error(const Eigen::Vector3d& p) const {
-    return p.dot(times_a(p)) + 2.0 * (b0 * p.x() + b1 * p.y() + b2 * p.z()) + c;
+  // In plain doubles (it runs for every pair costed; Eigen's shuffles of 3-vectors cost more than the arithmetic).
+  [[nodiscard]] double error(double x, double y, double z) const {
+    const double ax = a00 * x + a01 * y + a02 * z, ay = a01 * x + a11 * y + a12 * z, az = a02 * x + a12 * y + a22 * z;
+    return (x * ax + y * ay + z * az) + 2.0 * (b0 * x + b1 * y + b2 * z) + c;
   }
+  [[nodiscard]] double error(const Eigen::Vector3d& p) const { return error(p.x(), p.y(), p.z()); }
 };
 
 Quadric sum(const Quadric& a, const Quadric& b) {
@@ -75,16 +78,17 @@ Placement place(const Quadric& q, const Eigen::Vector3d& pu, const Eigen::Vector
   const double trace = q.a00 + q.a11 + q.a22;
   // det / trace^3 is the product of the eigenvalue ratios: near zero for flat or crease-only neighbourhoods.
   if (trace > 0 && det > 1e-9 * trace * trace * trace) {
+    // The common case, in plain doubles like Quadric::error.
     const double c11 = q.a00 * q.a22 - q.a02 * q.a02;
     const double c12 = q.a01 * q.a02 - q.a00 * q.a12;
     const double c22 = q.a00 * q.a11 - q.a01 * q.a01;
-    const Eigen::Vector3d b(q.b0, q.b1, q.b2);
-    const Eigen::Vector3d p = -Eigen::Vector3d(c00 * b.x() + c01 * b.y() + c02 * b.z(),
-                                               c01 * b.x() + c11 * b.y() + c12 * b.z(),
-                                               c02 * b.x() + c12 * b.y() + c22 * b.z()) /
-                              det;
-    const double reach = (pv - pu).squaredNorm();
-    if ((p - mid).squaredNorm() <= reach) return {p, std::max(0.0, q.error(p))};
+    const double x = -(c00 * q.b0 + c01 * q.b1 + c02 * q.b2) / det;
+    const double y = -(c01 * q.b0 + c11 * q.b1 + c12 * q.b2) / det;
+    const double z = -(c02 * q.b0 + c12 * q.b1 + c22 * q.b2) / det;
+    const double dx = pv.x() - pu.x(), dy = pv.y() - pu.y(), dz = pv.z() - pu.z();
+    const double mx = x - mid.x(), my = y - mid.y(), mz = z - mid.z();
+    if (mx * mx + my * my + mz * mz <= dx * dx + dy * dy + dz * dz)
+      return {Eigen::Vector3d(x, y, z), std::max(0.0, q.error(x, y, z))};
   }
   const Eigen::Vector3d d = pv - pu;
   const double dad = d.dot(q.times_a(d));
