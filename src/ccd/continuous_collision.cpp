@@ -51,6 +51,9 @@ struct IVec {
 IVec operator-(const IVec& a, const IVec& b) {
   return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}};
 }
+IVec operator+(const IVec& a, const IVec& b) {
+  return {{a.c[0] + b.c[0], a.c[1] + b.c[1], a.c[2] + b.c[2]}};
+}
 IVec hull(const IVec& a, const IVec& b) {
   return {{detail::hull(a.c[0], b.c[0]), detail::hull(a.c[1], b.c[1]), detail::hull(a.c[2], b.c[2])}};
 }
@@ -59,9 +62,6 @@ IVec cross(const IVec& a, const IVec& b) {
 }
 Interval dot(const IVec& a, const IVec& b) {
   return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2];
-}
-Interval determinant(const IVec& a, const IVec& b, const IVec& c) {
-  return dot(a, cross(b, c));
 }
 
 using Positions = std::array<IVec, 4>;
@@ -101,12 +101,16 @@ PointSet difference_points(PairKind kind, const Positions& x) {
   return set;
 }
 
-// Bernstein coefficients of D on the piece whose end positions are x0 and x1.
+// Bernstein coefficients of D on the piece whose end positions are x0 and x1 (the middle two times 3). D is trilinear
+// in (a, b, c), so they are a0.(b0 x c0), a1.(b0 x c0) + a0.(b1 x c0 + b0 x c1), and so on: four cross products
+// shared by the six dot products (interval arithmetic is subdistributive: no wider than the ten determinants, up to
+// rounding).
 std::array<Interval, 4> bernstein_of_d(const Positions& x0, const Positions& x1) {
   const IVec a0 = x0[1] - x0[0], b0 = x0[2] - x0[0], c0 = x0[3] - x0[0];
   const IVec a1 = x1[1] - x1[0], b1 = x1[2] - x1[0], c1 = x1[3] - x1[0];
-  return {determinant(a0, b0, c0), determinant(a1, b0, c0) + determinant(a0, b1, c0) + determinant(a0, b0, c1),
-          determinant(a1, b1, c0) + determinant(a1, b0, c1) + determinant(a0, b1, c1), determinant(a1, b1, c1)};
+  const IVec bc00 = cross(b0, c0), bc11 = cross(b1, c1);
+  const IVec bc_mixed = cross(b1, c0) + cross(b0, c1);
+  return {dot(a0, bc00), dot(a1, bc00) + dot(a0, bc_mixed), dot(a1, bc_mixed) + dot(a0, bc11), dot(a1, bc11)};
 }
 
 int common_strict_sign(const std::array<Interval, 4>& b) {
