@@ -128,6 +128,25 @@ TEST_CASE("QEM hand-made cases", "[geometry][qem]") {
     CHECK(compute_mesh_info(r.mesh).surface_area == Approx(compute_mesh_info(fan).surface_area));
     CHECK(r.mesh.vertices.col(2).cwiseAbs().maxCoeff() < 1e-12);
   }
+  SECTION("an edge of 258 faces stays locked: its face count saturates at 255 and does not wrap to 2") {
+    // Faces (0, 1, apex i) around the edge 0-1: a non-manifold edge, so 0 and 1 never move, and every pair touches
+    // them (apexes share no edge): nothing can be contracted.
+    constexpr int kFaces = 258;
+    TriangleMesh book;
+    book.vertices.resize(kFaces + 2, 3);
+    book.vertices.row(0) << 0, 0, 0;
+    book.vertices.row(1) << 1, 0, 0;
+    book.faces.resize(kFaces, 3);
+    for (int i = 0; i < kFaces; ++i) {
+      const double angle = 2 * M_PI * i / kFaces;
+      book.vertices.row(i + 2) << 0.5, std::cos(angle), std::sin(angle);
+      book.faces.row(i) << 0, 1, i + 2;
+    }
+    const SimplifyResult r = simplify_qem(book, to_faces(kFaces / 2));
+    CHECK(r.contractions == 0);
+    CHECK(r.faces_after == kFaces);
+    CHECK_FALSE(r.reached_target);
+  }
 }
 
 TEST_CASE("QEM non-edge pairs join nearby separate parts", "[geometry][qem][non-edge]") {
