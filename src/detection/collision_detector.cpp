@@ -21,6 +21,7 @@
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/network_culling.hpp"
 #include "pair_batch.hpp"
+#include "radix_sort.hpp"
 
 namespace clothcd {
 namespace {
@@ -97,7 +98,10 @@ struct CollisionDetector::Impl {
   detail::PairBatch spare;   // storage for the next batch when the last one is partly reused
   broadphase::CandidateSet fresh;  // candidates found by this call's search
   std::vector<std::size_t> todo;   // positions in `batch` of the pairs this call must test
-  std::vector<std::size_t> hits;   // indices of the results that hit, in canonical order
+  std::vector<detail::KeyedIndex> vertex_face_hits;  // the hits of one kind: canonical sort key and batch position
+  std::vector<detail::KeyedIndex> edge_edge_hits;
+  std::vector<detail::KeyedIndex> sort_scratch;
+  std::array<std::vector<std::uint64_t>, 3> key_offsets;  // per body: first dense vertex, face and edge number
   std::vector<Collision> collisions;
   // Reuse within a step (DetectorSettings::reuse_unchanged): the cloth positions of the last completed call.
   bool has_previous = false;
@@ -261,27 +265,58 @@ struct CollisionDetector::Impl {
     const broadphase::CandidateSet& candidates = batch.candidates;
     const std::vector<ccd::CcdResult>& results = batch.results;
     const std::size_t vf = candidates.vertex_face.size();
-    hits.clear();
+    // Canonical order by one integer key per hit: numbering every body's vertices (faces, edges) one after the other
+    // in body order maps (body, index) to a dense number with the same order, and dense first * (count of the second
+    // kind) + dense second orders like the candidate's four fields. Vertex-face hits come first.
+    const int bodies = static_cast<int>(obstacles.size()) + 1;
+    std::vector<std::uint64_t>& vertex_base = key_offsets[0];
+    std::vector<std::uint64_t>& face_base = key_offsets[1];
+    std::vector<std::uint64_t>& edge_base = key_offsets[2];
+    vertex_base.assign(bodies + 1, 0);
+    face_base.assign(bodies + 1, 0);
+    edge_base.assign(bodies + 1, 0);
+    for (int body = 0; body < bodies; ++body) {
+      const broadphase::BodyTopology& t = topology_of(body);
+      vertex_base[body + 1] = vertex_base[body] + static_cast<std::uint64_t>(t.vertex_count);
+      face_base[body + 1] = face_base[body] + static_cast<std::uint64_t>(t.face_count());
+      edge_base[body + 1] = edge_base[body] + static_cast<std::uint64_t>(t.edge_count());
+    }
+    vertex_face_hits.clear();
+    edge_edge_hits.clear();
     for (std::size_t i = 0; i < results.size(); ++i) {
-      if (results[i].hit) hits.push_back(i);
+      if (!results[i].hit) continue;
+      if (i < vf) {
+        const auto& c = candidates.vertex_face[i];
+        const std::uint64_t first = vertex_base[c.vertex_body] + static_cast<std::uint64_t>(c.vertex);
+        const std::uint64_t second = face_base[c.face_body] + static_cast<std::uint64_t>(c.face);
+        vertex_face_hits.push_back({first * face_base[bodies] + second, i});
+      } else {
+        const auto& c = candidates.edge_edge[i - vf];
+        const std::uint64_t first = edge_base[c.body_a] + static_cast<std::uint64_t>(c.edge_a);
+        const std::uint64_t second = edge_base[c.body_b] + static_cast<std::uint64_t>(c.edge_b);
+        edge_edge_hits.push_back({first * edge_base[bodies] + second, i});
+      }
     }
-    std::sort(hits.begin(), hits.end(), [&](std::size_t a, std::size_t b) {
-      if ((a < vf) != (b < vf)) return a < vf;
-      return a < vf ? candidates.vertex_face[a] < candidates.vertex_face[b]
-                    : candidates.edge_edge[a - vf] < candidates.edge_edge[b - vf];
-    });
+    detail::radix_sort_by_key(vertex_face_hits, sort_scratch);
+    detail::radix_sort_by_key(edge_edge_hits, sort_scratch);
     collisions.clear();
-    for (const std::size_t i : hits) {
-      Collision c;
-      c.kind = i < vf ? PairKind::VertexFace : PairKind::EdgeEdge;
-      c.vertices = batch.refs[i];
-      c.toi = results[i].toi;
-      c.parameters = results[i].parameters;
-      c.normal = results[i].normal;
-      c.conservative = results[i].state == ccd::CcdState::ConservativeHit;
-      collisions.push_back(c);
-    }
+    for (const detail::KeyedIndex& h : vertex_face_hits) add_collision(h.index);
+    for (const detail::KeyedIndex& h : edge_edge_hits) add_collision(h.index);
   }
+
+  // Appends the hit at position i of the batch to the collisions.
+  void add_collision(std::size_t i) {
+    const ccd::CcdResult& result = batch.results[i];
+    Collision c;
+    c.kind = i < batch.candidates.vertex_face.size() ? PairKind::VertexFace : PairKind::EdgeEdge;
+    c.vertices = batch.refs[i];
+    c.toi = result.toi;
+    c.parameters = result.parameters;
+    c.normal = result.normal;
+    c.conservative = result.state == ccd::CcdState::ConservativeHit;
+    collisions.push_back(c);
+  }
+
 };
 
 CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
