@@ -28,6 +28,17 @@ using LaneMask = int __attribute__((vector_size(16)));
 #endif
 }
 
+namespace packed_detail {
+/// Four consecutive values from `p` (any alignment) as one vector `Vector`.
+template <class Vector, class Value>
+[[nodiscard]] inline Vector load4(const Value* p) {
+  static_assert(sizeof(Vector) == 4 * sizeof(Value), "four lanes");
+  Vector v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+}  // namespace packed_detail
+
 /// One box in single precision, each bound rounded outwards (it contains the FlatBox it was made from).
 struct PackedBox {
   float lo[3];  ///< Lower corner, rounded down.
@@ -65,11 +76,7 @@ class PackedBoxes {
 
  private:
   using Floats = float __attribute__((vector_size(16)));
-  static Floats load(const float* p) {
-    Floats v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
+  static Floats load(const float* p) { return packed_detail::load4<Floats>(p); }
 
   std::vector<float> rows_;
   int size_ = 0;
@@ -96,11 +103,7 @@ class PackedVertexIds {
   }
 
  private:
-  static LaneMask load(const int* p) {
-    LaneMask v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
+  static LaneMask load(const int* p) { return packed_detail::load4<LaneMask>(p); }
 
   std::vector<int> rows_;
   int stride_ = 0;
