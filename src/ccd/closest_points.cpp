@@ -25,23 +25,44 @@ double segment_parameter(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
   return std::clamp(e.dot(p - a) / length_squared, 0.0, 1.0);
 }
 
-void keep_closer(ClosestPoints& best, const Eigen::Vector3d& first, const Eigen::Vector3d& second,
-                 std::array<double, 2> parameters) {
-  const double distance = (first - second).norm();
-  if (distance < best.distance) best = {distance, parameters, first, second};
-}
+// The closest candidate pair so far, compared by squared distance (one square root at the end instead of one per
+// candidate; the square root is monotonic, so the same candidate wins).
+struct Nearest {
+  double distance_squared;
+  ClosestPoints points;
+
+  Nearest(const Eigen::Vector3d& first, const Eigen::Vector3d& second)
+      : distance_squared((first - second).squaredNorm()), points{0.0, {0.0, 0.0}, first, second} {}
+
+  void keep_closer(const Eigen::Vector3d& first, const Eigen::Vector3d& second, std::array<double, 2> parameters) {
+    const double d2 = (first - second).squaredNorm();
+    if (d2 < distance_squared) {
+      distance_squared = d2;
+      points.parameters = parameters;
+      points.first = first;
+      points.second = second;
+    }
+  }
+
+  // The boundary minimum with its distance.
+  ClosestPoints finish() {
+    points.distance = std::sqrt(distance_squared);
+    return points;
+  }
+};
 
 }  // namespace
 
 ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
                                      const Eigen::Vector3d& t2) {
-  ClosestPoints best{(p - t0).norm(), {0.0, 0.0}, p, t0};
+  Nearest nearest(p, t0);
   const double s01 = segment_parameter(p, t0, t1);
-  keep_closer(best, p, t0 + s01 * (t1 - t0), {s01, 0.0});
+  nearest.keep_closer(p, t0 + s01 * (t1 - t0), {s01, 0.0});
   const double s02 = segment_parameter(p, t0, t2);
-  keep_closer(best, p, t0 + s02 * (t2 - t0), {0.0, s02});
+  nearest.keep_closer(p, t0 + s02 * (t2 - t0), {0.0, s02});
   const double s12 = segment_parameter(p, t1, t2);
-  keep_closer(best, p, t1 + s12 * (t2 - t1), {1.0 - s12, s12});
+  nearest.keep_closer(p, t1 + s12 * (t2 - t1), {1.0 - s12, s12});
+  ClosestPoints best = nearest.finish();
   const Eigen::Vector3d e1 = t1 - t0;
   const Eigen::Vector3d e2 = t2 - t0;
   const Eigen::Vector3d n = e1.cross(e2);
@@ -60,17 +81,18 @@ ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vect
 
 ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
                                       const Eigen::Vector3d& b1) {
-  ClosestPoints best{(a0 - b0).norm(), {0.0, 0.0}, a0, b0};
+  Nearest nearest(a0, b0);
   const Eigen::Vector3d da = a1 - a0;
   const Eigen::Vector3d db = b1 - b0;
   const double u0 = segment_parameter(a0, b0, b1);
-  keep_closer(best, a0, b0 + u0 * db, {0.0, u0});
+  nearest.keep_closer(a0, b0 + u0 * db, {0.0, u0});
   const double u1 = segment_parameter(a1, b0, b1);
-  keep_closer(best, a1, b0 + u1 * db, {1.0, u1});
+  nearest.keep_closer(a1, b0 + u1 * db, {1.0, u1});
   const double s0 = segment_parameter(b0, a0, a1);
-  keep_closer(best, a0 + s0 * da, b0, {s0, 0.0});
+  nearest.keep_closer(a0 + s0 * da, b0, {s0, 0.0});
   const double s1 = segment_parameter(b1, a0, a1);
-  keep_closer(best, a0 + s1 * da, b1, {s1, 1.0});
+  nearest.keep_closer(a0 + s1 * da, b1, {s1, 1.0});
+  ClosestPoints best = nearest.finish();
   const double aa = da.squaredNorm(), bb = db.squaredNorm();
   const Eigen::Vector3d n = da.cross(db);
   const double n2 = n.squaredNorm();
