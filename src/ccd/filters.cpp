@@ -5,8 +5,10 @@
 // follow from trilinearity: b0 = det(A0, B0, C0), 3 b1 = det(A1, B0, C0) + det(A0, B1, C0) + det(A0, B0, C1),
 // 3 b2 = det(A1, B1, C0) + det(A1, B0, C1) + det(A0, B1, C1), b3 = det(A1, B1, C1) (A = x1 - x0, B = x2 - x0,
 // C = x3 - x0 at t = 0 and 1). D lies in the convex hull of its Bernstein coefficients, so four of one strict sign mean
-// no coplanarity, hence no contact. Each coefficient is compared with a forward error bound 32 u * (the same expression
-// on absolute values) + 1e-300 (u = 2^-53; the exact bound is about 10 u, the absolute term covers underflow).
+// no coplanarity, hence no contact. The ten determinants share four cross products: b0 = A0.(B0 x C0),
+// 3 b1 = A1.(B0 x C0) + A0.(B1 x C0 + B0 x C1), 3 b2 = A1.(B1 x C0 + B0 x C1) + A0.(B1 x C1), b3 = A1.(B1 x C1). Each
+// coefficient is compared with a forward error bound 32 u * (the same expression on absolute values) + 1e-300
+// (u = 2^-53; at most 9 roundings deep, so the exact bound is about 9 u; the absolute term covers underflow).
 //
 // Projection filter (Wan et al., eqs. 8-10): Z = s . (p - q) for every point p of one primitive and q of the other, at
 // t = 0 and t = 1. Each Z is linear in t, so all Z beyond +h|s| (or all below -h|s|) at both ends stays so in between:
@@ -29,13 +31,28 @@ struct Bounded {
   double magnitude;  // the same expression evaluated on absolute values
 };
 
-Bounded determinant(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d cross = b.cross(c);
+struct BoundedVector {
+  Eigen::Vector3d value;
+  Eigen::Vector3d magnitude;  // the same expression evaluated on absolute values
+};
+
+BoundedVector cross(const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d ba = b.cwiseAbs();
   const Eigen::Vector3d ca = c.cwiseAbs();
-  const Eigen::Vector3d permanent_cross{ba.y() * ca.z() + ba.z() * ca.y(), ba.z() * ca.x() + ba.x() * ca.z(),
-                                        ba.x() * ca.y() + ba.y() * ca.x()};
-  return {a.dot(cross), a.cwiseAbs().dot(permanent_cross)};
+  return {b.cross(c), {ba.y() * ca.z() + ba.z() * ca.y(), ba.z() * ca.x() + ba.x() * ca.z(),
+                       ba.x() * ca.y() + ba.y() * ca.x()}};
+}
+
+BoundedVector operator+(const BoundedVector& u, const BoundedVector& v) {
+  return {u.value + v.value, u.magnitude + v.magnitude};
+}
+
+Bounded dot(const Eigen::Vector3d& a, const BoundedVector& v) {
+  return {a.dot(v.value), a.cwiseAbs().dot(v.magnitude)};
+}
+
+Bounded operator+(const Bounded& x, const Bounded& y) {
+  return {x.value + y.value, x.magnitude + y.magnitude};
 }
 
 // +1 or -1 when value is certainly of that sign under its error bound, else 0.
@@ -75,19 +92,17 @@ bool nonpenetration_filter_culls(const CcdQuery& query, const CcdSettings& setti
   const std::array<Eigen::Vector3d, 2> a{query.start[1] - query.start[0], query.end[1] - query.end[0]};
   const std::array<Eigen::Vector3d, 2> b{query.start[2] - query.start[0], query.end[2] - query.end[0]};
   const std::array<Eigen::Vector3d, 2> c{query.start[3] - query.start[0], query.end[3] - query.end[0]};
-  const Bounded b0 = determinant(a[0], b[0], c[0]);
-  const Bounded b3 = determinant(a[1], b[1], c[1]);
+  const BoundedVector bc00 = cross(b[0], c[0]);
+  const BoundedVector bc11 = cross(b[1], c[1]);
+  const Bounded b0 = dot(a[0], bc00);
+  const Bounded b3 = dot(a[1], bc11);
   const int s0 = certain_sign(b0.value, b0.magnitude);
   if (s0 == 0 || certain_sign(b3.value, b3.magnitude) != s0) return false;
-  const Bounded b1a = determinant(a[1], b[0], c[0]);
-  const Bounded b1b = determinant(a[0], b[1], c[0]);
-  const Bounded b1c = determinant(a[0], b[0], c[1]);
-  if (certain_sign(b1a.value + b1b.value + b1c.value, b1a.magnitude + b1b.magnitude + b1c.magnitude) != s0)
-    return false;
-  const Bounded b2a = determinant(a[1], b[1], c[0]);
-  const Bounded b2b = determinant(a[1], b[0], c[1]);
-  const Bounded b2c = determinant(a[0], b[1], c[1]);
-  return certain_sign(b2a.value + b2b.value + b2c.value, b2a.magnitude + b2b.magnitude + b2c.magnitude) == s0;
+  const BoundedVector bc_mixed = cross(b[1], c[0]) + cross(b[0], c[1]);
+  const Bounded b1 = dot(a[1], bc00) + dot(a[0], bc_mixed);
+  if (certain_sign(b1.value, b1.magnitude) != s0) return false;
+  const Bounded b2 = dot(a[1], bc_mixed) + dot(a[0], bc11);
+  return certain_sign(b2.value, b2.magnitude) == s0;
 }
 
 bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings) {
