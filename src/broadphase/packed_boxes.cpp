@@ -1,34 +1,31 @@
-// Outward rounding from double to float: a bound moved outwards by 2^-22 of its magnitude (plus 1e-30, a normal float,
-// for bounds near zero) before the round-to-nearest conversion cannot come back past the original value, since that
-// conversion moves it by at most 2^-24 of its magnitude (or half a subnormal step). Bounds beyond the float range are
-// clamped to the largest float on the side that keeps them conservative (infinity on the outer side is fine).
+// Outward rounding from double to float: a bound of magnitude below 1e38 moved outwards by 2^-22 of its magnitude
+// (plus 1e-30, a normal float, for bounds near zero) before the round-to-nearest conversion cannot come back past the
+// original value, since that conversion moves it by at most 2^-24 of its magnitude (or half a subnormal step), and it
+// stays below the largest float. Bounds of magnitude 1e38 or more (and infinities) get a fixed float on the
+// conservative side: 9e37 below a huge positive value, -infinity below a huge negative one, and symmetrically above.
 #include "clothcd/broadphase/packed_boxes.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace clothcd::broadphase {
 namespace {
 
-constexpr double kFloatMax = std::numeric_limits<float>::max();
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-constexpr double kBeyondFloat = 1e39;
+constexpr double kLargeBound = 1e38;
+constexpr float kBelowLargeBound = 9e37f;
 
-// Bounds are first clamped to +-1e39 (beyond the float range, so the clamp never crosses a float bound and maps
-// infinities to finite values). The conditional expressions compile to min/max instructions, not branches.
-float round_down(double x) {
-  double v = x < -kBeyondFloat ? -kBeyondFloat : x;
-  v = v > kBeyondFloat ? kBeyondFloat : v;
-  v -= std::fabs(v) * 0x1p-22 + 1e-30;
-  return static_cast<float>(v > kFloatMax ? kFloatMax : v);
+// The common case is one predictable branch and five arithmetic instructions.
+inline float round_down(double x) {
+  const double magnitude = std::fabs(x);
+  if (magnitude < kLargeBound) return static_cast<float>(x - (magnitude * 0x1p-22 + 1e-30));
+  return x > 0.0 ? kBelowLargeBound : -kInfinity;  // NaN also lands here: with round_up's answer, an empty box
 }
 
-float round_up(double x) {
-  double v = x < -kBeyondFloat ? -kBeyondFloat : x;
-  v = v > kBeyondFloat ? kBeyondFloat : v;
-  v += std::fabs(v) * 0x1p-22 + 1e-30;
-  return static_cast<float>(v < -kFloatMax ? -kFloatMax : v);
+inline float round_up(double x) {
+  const double magnitude = std::fabs(x);
+  if (magnitude < kLargeBound) return static_cast<float>(x + (magnitude * 0x1p-22 + 1e-30));
+  return x < 0.0 ? -kBelowLargeBound : kInfinity;
 }
 
 }  // namespace
@@ -48,10 +45,10 @@ void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
   rows_.resize(6 * static_cast<std::size_t>(stride_));
   float* r = rows_.data();
   for (int j = 0; j < size_; ++j) {
-    const PackedBox p = pack_box(boxes[j]);
+    const FlatBox& b = boxes[j];
     for (int k = 0; k < 3; ++k) {
-      r[k * stride_ + j] = p.lo[k];
-      r[(3 + k) * stride_ + j] = p.hi[k];
+      r[k * stride_ + j] = round_down(b.min[k]);
+      r[(3 + k) * stride_ + j] = round_up(b.max[k]);
     }
   }
   for (int j = size_; j < stride_; ++j) {  // padding: an empty box overlaps nothing

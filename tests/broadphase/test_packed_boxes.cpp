@@ -36,7 +36,8 @@ TEST_CASE("packed boxes contain the double boxes at every magnitude", "[broadpha
   std::mt19937_64 rng(41);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> values{0.0, -0.0, inf, -inf, 1e39, -1e39, 3.4028234e38, -3.4028234e38, 1e-45, -1e-45,
-                             std::numeric_limits<double>::denorm_min(), 1.0, -1.0};
+                             std::numeric_limits<double>::denorm_min(), 1.0, -1.0,
+                             1e38, -1e38, 9.99999e37, -9.99999e37, 1.00001e38, -1.00001e38, 1e-30, -1e-30};
   for (int i = 0; i < 200000; ++i) values.push_back(random_double(rng, -1074, 1023));
   for (int i = 0; i < 200000; ++i) values.push_back(random_double(rng, -30, 30));
   for (const double x : values) {
