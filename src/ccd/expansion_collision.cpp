@@ -573,8 +573,12 @@ class System {
     const int u = (k + 1) % 3, v = (k + 2) % 3;
     return (w_at(end, a, u) * w_at(end, b, u) + w_at(end, a, v) * w_at(end, b, v)).sign();
   }
-  // The time when points i and j have the same coordinate on axis k, num / den with den > 0; false when their
-  // coordinates on that axis move in parallel.
+  // The time when points i and j have the same coordinate on axis k, rounded (NaN or infinite when they move in
+  // parallel, far off when the difference of their speeds cancels).
+  double alignment_time_estimate(int i, int j, int k) const {
+    return (c_[j][k] - c_[i][k]) / ((c_[i + 4][k] - c_[i][k]) - (c_[j + 4][k] - c_[j][k]));
+  }
+  // The same time exactly, num / den with den > 0; false when they move in parallel.
   bool alignment_time(int i, int j, int k, Expansion& num, Expansion& den) const {
     num = Expansion::difference(c_[j][k], c_[i][k]);
     den = Expansion::difference(c_[i + 4][k], c_[i][k]) - Expansion::difference(c_[j + 4][k], c_[j][k]);
@@ -640,6 +644,9 @@ void pin_rational_root(Candidate& c, const System& system) {
   for (int i = 0; i < 4; ++i) {
     for (int j = i + 1; j < 4; ++j) {
       for (int k = 0; k < 3; ++k) {
+        // A rounded time far from the bracket skips the exact one (an estimate wrong by cancellation only costs a pin).
+        const double rounded = system.alignment_time_estimate(i, j, k);
+        if (!(rounded > lo - 1e-6 && rounded < hi + 1e-6)) continue;
         if (!system.alignment_time(i, j, k, num, den)) continue;
         const double r = num.estimate() / den.estimate();
         if (!(r > lo - slack && r < hi + slack)) continue;
