@@ -34,6 +34,7 @@ std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vec
   const std::size_t previous_vf = previous.candidates.vertex_face.size();
   next.candidates.clear();
   std::vector<std::size_t> from;  // position in `previous` of each reused pair, in next's order
+  from.reserve(previous.size());
   for (std::size_t i = 0; i < previous_vf; ++i) {
     if (!unmoved(i)) continue;
     from.push_back(i);
@@ -53,6 +54,7 @@ std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vec
 
   const std::size_t next_vf = next.candidates.vertex_face.size();
   std::vector<std::size_t> todo;
+  todo.reserve(fresh.size());
   auto copy = [&](std::size_t to, std::size_t i) {
     next.refs[to] = previous.refs[i];
     next.keep[to] = previous.keep[i];
