@@ -661,7 +661,11 @@ void pin_rational_root(Candidate& c, const System& system) {
   }
 }
 
-// The reference's predicate (exact_reference.cpp) at one candidate, with signs computed on first use.
+// The reference's predicate (exact_reference.cpp) at one candidate, with signs computed on first use, and one
+// shortcut: every candidate is a time where D = 0, where the points of W span at most a plane through the origin. When
+// a triangle of W projects to a non-degenerate triangle with the origin strictly inside (three cross products of one
+// strict sign), that projection maps W's plane one to one, so the origin is in the triangle itself: inside, without
+// the other projections.
 class Predicate {
  public:
   Predicate(System& system, Candidate& candidate) : system_(system), candidate_(candidate) {
@@ -674,12 +678,13 @@ class Predicate {
 
   // Whether the origin is in conv W at the candidate; nullopt when a sign could not be decided.
   std::optional<bool> holds() {
-    bool result = true;
-    for (int k = 0; k < 3 && result; ++k) {
+    bool result = true, strictly = false;
+    for (int k = 0; k < 3 && result && !strictly; ++k) {
       bool inside = false;
       for (int a = 0; a < system_.points() && !inside; ++a)
         for (int b = a + 1; b < system_.points() && !inside; ++b)
-          for (int c = b + 1; c < system_.points() && !inside; ++c) inside = triangle_contains_origin(k, a, b, c);
+          for (int c = b + 1; c < system_.points() && !inside; ++c)
+            inside = triangle_contains_origin(k, a, b, c, strictly);
       result = inside;
     }
     if (failed_) return std::nullopt;
@@ -710,9 +715,11 @@ class Predicate {
     if (end_ >= 0 && cached == kUnknown) cached = system_.end_dot(end_, k, a, b);
     return cached != kUnknown ? cached : sign_of(cached, system_.dot(k, a, b));
   }
-  bool triangle_contains_origin(int k, int a, int b, int c) {
-    return detail::triangle_contains_origin_by_signs({cross(k, a, b), cross(k, b, c), cross(k, c, a)}, {a, b, c},
-                                                     [&](int i, int j) { return dot(k, i, j); });
+  // strictly is set when the origin is strictly inside a non-degenerate projected triangle.
+  bool triangle_contains_origin(int k, int a, int b, int c, bool& strictly) {
+    const std::array<int, 3> signs{cross(k, a, b), cross(k, b, c), cross(k, c, a)};
+    strictly = signs[0] != 0 && signs[0] == signs[1] && signs[1] == signs[2];
+    return detail::triangle_contains_origin_by_signs(signs, {a, b, c}, [&](int i, int j) { return dot(k, i, j); });
   }
 
   static constexpr int kUnknown = 2;
