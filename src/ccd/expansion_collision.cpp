@@ -591,6 +591,26 @@ class System {
   }
   const Poly& d() const { return d_; }
   int points() const { return points_; }
+  // The axes ordered by decreasing magnitude of the rounded normal of W's plane at time t: the projection dropping the
+  // first is the best conditioned (estimates only, the order does not change the answer).
+  std::array<int, 3> axes_by_normal(double t) const {
+    std::array<std::array<double, 3>, 3> w;
+    for (int m = 0; m < 3; ++m) {
+      for (int k = 0; k < 3; ++k) {
+        const auto at = [&](int i) { return c_[i][k] + t * (c_[i + 4][k] - c_[i][k]); };
+        w[m][k] = at(pairs_[m][0]) - at(pairs_[m][1]);
+      }
+    }
+    std::array<double, 3> normal;
+    for (int k = 0; k < 3; ++k) {
+      const int u = (k + 1) % 3, v = (k + 2) % 3;
+      const double n = (w[1][u] - w[0][u]) * (w[2][v] - w[0][v]) - (w[1][v] - w[0][v]) * (w[2][u] - w[0][u]);
+      normal[k] = std::isnan(n) ? 0.0 : std::fabs(n);
+    }
+    std::array<int, 3> axes{0, 1, 2};
+    std::sort(axes.begin(), axes.end(), [&](int a, int b) { return normal[a] > normal[b]; });
+    return axes;
+  }
   // a < b.
   const Poly& cross(int k, int a, int b) {
     const Poly*& p = cross_[k][a][b];
@@ -665,7 +685,8 @@ void pin_rational_root(Candidate& c, const System& system) {
 // shortcut: every candidate is a time where D = 0, where the points of W span at most a plane through the origin. When
 // a triangle of W projects to a non-degenerate triangle with the origin strictly inside (three cross products of one
 // strict sign), that projection maps W's plane one to one, so the origin is in the triangle itself: inside, without
-// the other projections.
+// the other projections. The projections go in order of decreasing rounded normal component (the best conditioned
+// first), so that this shortcut, or an exclusion, usually comes from the first one.
 class Predicate {
  public:
   Predicate(System& system, Candidate& candidate) : system_(system), candidate_(candidate) {
@@ -679,7 +700,11 @@ class Predicate {
   // Whether the origin is in conv W at the candidate; nullopt when a sign could not be decided.
   std::optional<bool> holds() {
     bool result = true, strictly = false;
-    for (int k = 0; k < 3 && result && !strictly; ++k) {
+    const double t = candidate_.rational ? candidate_.num.estimate() / candidate_.den.estimate()
+                                         : candidate_.lo.estimate();
+    const std::array<int, 3> axes = system_.axes_by_normal(t);
+    for (int i = 0; i < 3 && result && !strictly; ++i) {
+      const int k = axes[static_cast<std::size_t>(i)];
       bool inside = false;
       for (int a = 0; a < system_.points() && !inside; ++a)
         for (int b = a + 1; b < system_.points() && !inside; ++b)
