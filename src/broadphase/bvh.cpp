@@ -171,6 +171,7 @@ void Bvh::refit(const SweptBoxes& boxes) {
   const int node_count = static_cast<int>(nodes_.size());
   looseness_ = 0.0;
   if (settings_.volume == VolumeKind::Obb) {
+    packed_node_boxes_.assign({});
     obbs_.resize(node_count);
     for (int i = 0; i < node_count; ++i) {
       geometry::Obb& obb = obbs_[i];
@@ -220,6 +221,7 @@ void Bvh::refit(const SweptBoxes& boxes) {
       looseness_ += box_area(b);
     }
   }
+  packed_node_boxes_.assign(node_boxes);
 }
 
 }  // namespace clothcd::broadphase

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -100,25 +101,52 @@ FlatBox leaf_box(const Bvh& bvh, int node) {
   return b;
 }
 
+// The leaf's box as an outward-rounded float box: the packed node box, or packed from leaf_box() for OBB hierarchies.
+PackedBox packed_leaf_box(const Bvh& bvh, int node) {
+  if (bvh.packed_node_boxes().size() > 0) return bvh.packed_node_boxes().at(node);
+  return pack_box(leaf_box(bvh, node));
+}
+
+// For each 4-bit lane mask: the passing lanes in order (padded with lane 0) and how many there are.
+struct LaneTable {
+  std::array<std::array<int, 4>, 16> lanes{};
+  std::array<int, 16> count{};
+};
+
+constexpr LaneTable make_lane_table() {
+  LaneTable table;
+  for (int mask = 0; mask < 16; ++mask) {
+    for (int lane = 0; lane < 4; ++lane) {
+      if ((mask >> lane) & 1) table.lanes[mask][table.count[mask]++] = lane;
+    }
+  }
+  return table;
+}
+
+constexpr LaneTable kLaneTable = make_lane_table();
+
+// Writes the positions j in [begin, end) whose packed box may overlap `q` to `out` (grown as needed) and returns how
+// many, four positions at a time and without a data-dependent branch: the group's lane bits index a table of the
+// passing lanes, all four slots are written, and the count advances by the number that passed. It keeps every
+// position whose double-precision box overlaps the box `q` was made from (and maybe a few more).
+int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox& q, std::vector<int>& out) {
+  if (out.size() < static_cast<std::size_t>(end - begin + 4)) out.resize(static_cast<std::size_t>(end - begin + 4));
+  int n = 0;
+  for (int j = begin; j < end; j += 4) {
+    const int lanes = end - j < 4 ? end - j : 4;
+    const unsigned mask = lane_bits(boxes.overlap_lanes(j, q)) & ((1u << lanes) - 1u);
+    const std::array<int, 4>& passing = kLaneTable.lanes[mask];
+    for (int k = 0; k < 4; ++k) out[n + k] = j + passing[k];
+    n += kLaneTable.count[mask];
+  }
+  return n;
+}
+
 // Lists of one search task, reused from leaf pair to leaf pair.
 struct LeafScratch {
   std::vector<int> selected;  // primitives of one leaf whose box overlaps the other leaf's box
   std::vector<int> hits;      // primitives of the other leaf that pass every test against one selected primitive
 };
-
-// Writes the positions j in [begin, end) for which `passes(j)` holds to `out` (grown as needed) and returns how many.
-// The loop has no data-dependent branch: neighbouring primitives pass or fail their box tests unpredictably, and a
-// mispredicted branch costs more than the few tests themselves.
-template <class Passes>
-int collect(int begin, int end, std::vector<int>& out, const Passes& passes) {
-  if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
-  int n = 0;
-  for (int j = begin; j < end; ++j) {
-    out[n] = j;
-    n += passes(j) ? 1 : 0;
-  }
-  return n;
-}
 
 // Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
 // `mask4(j)`, four positions at a time on packed data (bit k for position j + k; it may pass pairs that `confirm`
@@ -149,7 +177,7 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
   const Bvh& tb = *b.bvh;
   const BvhNode& la = ta.nodes()[na];
   const BvhNode& lb = tb.nodes()[nb];
-  const FlatBox box_a = leaf_box(ta, na), box_b = leaf_box(tb, nb);
+  const PackedBox box_a = packed_leaf_box(ta, na), box_b = packed_leaf_box(tb, nb);
   // Whether the vertex at owned position i of the vertex body, or the face at tree position p of the face body, brings
   // a moved vertex of body a into the pair.
   auto wanted = [&](bool vertex_in_a, int i, int p) {
@@ -159,15 +187,14 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     return moved[f[0]] != 0 || moved[f[1]] != 0 || moved[f[2]] != 0;
   };
   auto vertices_against_faces = [&](const BodyView& vertex_body, const BvhNode& vertex_leaf, const BodyView& face_body,
-                                    const BvhNode& face_leaf, const FlatBox& face_leaf_box) {
+                                    const BvhNode& face_leaf, const PackedBox& face_leaf_box) {
     const Bvh& tv = *vertex_body.bvh;
     const Bvh& tf = *face_body.bvh;
     const bool vertex_in_a = &vertex_body == &a;
     const FlatBox* vertex_boxes = tv.ordered_vertex_boxes().data();
     const FlatBox* face_boxes = tf.ordered_face_boxes().data();
     const Range vr = vertex_range(tv, vertex_leaf);
-    const int selected = collect(vr.begin, vr.end, scratch.selected,
-                                 [&](int i) { return vertex_boxes[i].overlaps(face_leaf_box); });
+    const int selected = select_packed(tv.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
     stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
     for (int k = 0; k < selected; ++k) {
       const int i = scratch.selected[k];
@@ -191,10 +218,16 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
   const int* edges_a = ta.ordered_edges().data();
   const FlatBox* edge_boxes_a = ta.ordered_edge_boxes().data();
   const FlatBox* edge_boxes_b = tb.ordered_edge_boxes().data();
-  const int selected = collect(ea.begin, ea.end, scratch.selected, [&](int i) {
-    return edge_boxes_a[i].overlaps(box_b) &
-           (moved == nullptr || moved[edges_a[2 * i]] != 0 || moved[edges_a[2 * i + 1]] != 0);
-  });
+  int selected = select_packed(ta.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
+  if (moved != nullptr) {  // keep the edges with a moved vertex
+    int kept = 0;
+    for (int k = 0; k < selected; ++k) {
+      const int i = scratch.selected[k];
+      scratch.selected[kept] = i;
+      kept += (moved[edges_a[2 * i]] | moved[edges_a[2 * i + 1]]) != 0 ? 1 : 0;
+    }
+    selected = kept;
+  }
   stats.primitive_tests += (ea.end - ea.begin) + selected * (eb.end - eb.begin);
   for (int k = 0; k < selected; ++k) {
     const int i = scratch.selected[k];
@@ -224,10 +257,9 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   const FlatBox* face_boxes = t.ordered_face_boxes().data();
   const FlatBox* edge_boxes = t.ordered_edge_boxes().data();
   auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf,
-                                    const FlatBox& face_leaf_box) {
+                                    const PackedBox& face_leaf_box) {
     const Range vr = vertex_range(t, vertex_leaf);
-    const int selected = collect(vr.begin, vr.end, scratch.selected,
-                                 [&](int i) { return vertex_boxes[i].overlaps(face_leaf_box); });
+    const int selected = select_packed(t.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
     stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
     for (int k = 0; k < selected; ++k) {
       const int i = scratch.selected[k];
@@ -249,12 +281,11 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
       }
     }
   };
-  const FlatBox box_a = leaf_box(t, na), box_b = leaf_box(t, nb);
+  const PackedBox box_a = packed_leaf_box(t, na), box_b = packed_leaf_box(t, nb);
   vertices_against_faces(la, lb, box_b);
   if (!same) vertices_against_faces(lb, la, box_a);
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
-  const int selected =
-      collect(ea.begin, ea.end, scratch.selected, [&](int i) { return edge_boxes[i].overlaps(box_b); });
+  const int selected = select_packed(t.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
   stats.primitive_tests += ea.end - ea.begin;
   for (int k = 0; k < selected; ++k) {
     const int i = scratch.selected[k];

@@ -88,6 +88,8 @@ class Bvh {
   [[nodiscard]] const PackedBoxes& packed_vertex_boxes() const { return packed_vertex_boxes_; }
   /// Outward-rounded single-precision copies of ordered_edge_boxes.
   [[nodiscard]] const PackedBoxes& packed_edge_boxes() const { return packed_edge_boxes_; }
+  /// Outward-rounded single-precision copies of the node boxes (empty with the node boxes, for VolumeKind::Obb).
+  [[nodiscard]] const PackedBoxes& packed_node_boxes() const { return packed_node_boxes_; }
   /// ordered_faces as three rows (four-at-a-time shared-vertex tests).
   [[nodiscard]] const PackedVertexIds& packed_faces() const { return packed_faces_; }
   /// ordered_edges as two rows.
@@ -130,6 +132,7 @@ class Bvh {
   PackedBoxes packed_face_boxes_;
   PackedBoxes packed_vertex_boxes_;
   PackedBoxes packed_edge_boxes_;
+  PackedBoxes packed_node_boxes_;
   std::vector<int> ordered_faces_;
   PackedVertexIds packed_faces_;
   PackedVertexIds packed_edges_;
