@@ -125,21 +125,27 @@ constexpr LaneTable make_lane_table() {
 
 constexpr LaneTable kLaneTable = make_lane_table();
 
-// Writes the positions j in [begin, end) whose packed box may overlap `q` to `out` (grown as needed) and returns how
-// many, four positions at a time and without a data-dependent branch: the group's lane bits index a table of the
-// passing lanes, all four slots are written, and the count advances by the number that passed. It keeps every
-// position whose double-precision box overlaps the box `q` was made from (and maybe a few more).
-int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox& q, std::vector<int>& out) {
+// Writes the positions j in [begin, end) whose bit is set in `mask4(j)` (bit k for position j + k, evaluated four
+// positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent branch: the group's
+// bits index a table of the passing lanes, all four slots are written, and the count advances by the number set.
+template <class Mask4>
+int select_lanes(int begin, int end, std::vector<int>& out, const Mask4& mask4) {
   if (out.size() < static_cast<std::size_t>(end - begin + 4)) out.resize(static_cast<std::size_t>(end - begin + 4));
   int n = 0;
   for (int j = begin; j < end; j += 4) {
     const int lanes = end - j < 4 ? end - j : 4;
-    const unsigned mask = lane_bits(boxes.overlap_lanes(j, q)) & ((1u << lanes) - 1u);
+    const unsigned mask = mask4(j) & ((1u << lanes) - 1u);
     const std::array<int, 4>& passing = kLaneTable.lanes[mask];
     for (int k = 0; k < 4; ++k) out[n + k] = j + passing[k];
     n += kLaneTable.count[mask];
   }
   return n;
+}
+
+// The positions j in [begin, end) whose packed box may overlap `q` (see select_lanes): every position whose
+// double-precision box overlaps the box `q` was made from, and maybe a few more.
+int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox& q, std::vector<int>& out) {
+  return select_lanes(begin, end, out, [&](int j) { return lane_bits(boxes.overlap_lanes(j, q)); });
 }
 
 // Lists of one search task, reused from leaf pair to leaf pair.
@@ -150,7 +156,8 @@ struct LeafScratch {
 
 // Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
 // `mask4(j)`, four positions at a time on packed data (bit k for position j + k; it may pass pairs that `confirm`
-// rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes.
+// rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes. (Here most groups pass
+// nothing, so a loop over the set bits costs less than select_lanes' table writes.)
 template <class Mask4, class Confirm>
 int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4, const Confirm& confirm) {
   if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
