@@ -165,3 +165,49 @@ TEST_CASE("thickness: hits carry the closest-point parameters and normal", "[ccd
   CHECK(ee.parameters[1] == Approx(0.5).margin(1e-9));
   CHECK((ee.normal - Vector3d(0, 0, 1)).norm() < 1e-9);
 }
+
+TEST_CASE("thickness: pairs sliding past at about h are never missed", "[ccd][thickness][differential]") {
+  // A vertex over a face, or an edge over an edge, moving far sideways while the gap changes little: the Lipschitz
+  // bound cannot clear such a step, so the search relies on projections onto the gap direction, which must not drop
+  // a pair that comes within h.
+  Random random(31u);
+  const double h = 0.004;
+  ccd::CcdSettings settings;
+  settings.thickness = h;
+  int hits = 0, separated = 0;
+  for (int i = 0; i < 400; ++i) {
+    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    std::array<Vector3d, 4> start;
+    if (kind == PairKind::VertexFace) {
+      start = {Vector3d(0, 0, 0), Vector3d(-0.05, -0.05, 0), Vector3d(0.05, -0.05, 0), Vector3d(0, 0.05, 0)};
+    } else {
+      start = {Vector3d(-0.03, 0, 0), Vector3d(0.03, 0, 0), Vector3d(0, -0.03, 0), Vector3d(0, 0.03, 0)};
+    }
+    const double gap0 = random.uniform(0.5 * h, 1.6 * h), gap1 = random.uniform(0.5 * h, 1.6 * h);
+    const Vector3d slide(random.uniform(-0.04, 0.04), random.uniform(-0.04, 0.04), 0.0);
+    const Vector3d tilt = random.vector(0.002);
+    std::array<Vector3d, 4> end = start;
+    const int first_count = kind == PairKind::VertexFace ? 1 : 2;
+    for (int k = 0; k < first_count; ++k) {
+      start[k].z() += gap0;
+      end[k].z() += gap1;
+      end[k] += slide + (k == 0 ? tilt : Vector3d(-tilt));
+    }
+    const ccd::CcdQuery query = make_query(kind, start, end);
+    const double distance = reference_min_distance(query);
+    const ccd::CcdResult result = ccd::continuous_collision(query, settings);
+    if (distance <= h) {
+      INFO("query " << i << " distance " << distance);
+      CHECK(result.hit);
+      ++hits;
+    } else if (!result.hit) {
+      ++separated;
+    }
+    if (result.hit) {
+      for (int k = 0; k * 1.0 / kTimes < result.toi; ++k)
+        CHECK(grid_distance(query, k * 1.0 / kTimes) > h * (1 - 1e-9));
+    }
+  }
+  CHECK(hits > 50);
+  CHECK(separated > 50);
+}
