@@ -163,13 +163,14 @@ TriangleVerdict classify_triangle(const ProjectedSigns& signs, int a, int b, int
   return TriangleVerdict::Unknown;
 }
 
-struct ProjectionVerdict {
-  bool all_outside = false;  // in some projection, the origin is certainly outside every triangle
-  bool one_inside = false;   // in some projection, the origin is certainly strictly inside one triangle
-};
+enum class PieceOutcome { Clear, Hit, Undecided };
 
-ProjectionVerdict classify_projections(const PointSet& boxes) {
-  ProjectionVerdict verdict;
+// Clear when in some projection the origin is certainly outside every triangle of W; Hit when D certainly changes
+// sign over the piece and in some projection the origin is certainly strictly inside one triangle (then no projection
+// can exclude it: at the coplanar instant the origin is in conv W), so both answers end the scan early; else
+// Undecided.
+PieceOutcome classify_projections(const PointSet& boxes, bool d_changes_sign) {
+  bool one_inside = false;
   for (int k = 0; k < 3; ++k) {
     const ProjectedSigns signs = projected_signs(boxes, k);
     bool all_outside = true;
@@ -178,16 +179,15 @@ ProjectionVerdict classify_projections(const PointSet& boxes) {
         for (int c = b + 1; c < boxes.count; ++c) {
           const TriangleVerdict t = classify_triangle(signs, a, b, c);
           all_outside = all_outside && t == TriangleVerdict::Outside;
-          verdict.one_inside = verdict.one_inside || t == TriangleVerdict::Inside;
+          one_inside = one_inside || t == TriangleVerdict::Inside;
         }
       }
     }
-    verdict.all_outside = verdict.all_outside || all_outside;
+    if (all_outside) return PieceOutcome::Clear;
+    if (one_inside && d_changes_sign) return PieceOutcome::Hit;
   }
-  return verdict;
+  return PieceOutcome::Undecided;
 }
-
-enum class PieceOutcome { Clear, Hit, Undecided };
 
 struct Search {
   const CcdQuery& query;
@@ -231,11 +231,11 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
   if (boxes_exclude_origin(boxes, 0.0)) return PieceOutcome::Clear;
   const std::array<Interval, 4> bernstein = bernstein_of_d(x0, x1);
   if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
-  const ProjectionVerdict verdict = classify_projections(boxes);
-  if (verdict.all_outside) return PieceOutcome::Clear;
   const int sign_start = certain_sign(bernstein[0]);
   const int sign_end = certain_sign(bernstein[3]);
-  if (verdict.one_inside && sign_start != 0 && sign_end == -sign_start) {
+  const PieceOutcome verdict = classify_projections(boxes, sign_start != 0 && sign_end == -sign_start);
+  if (verdict == PieceOutcome::Clear) return PieceOutcome::Clear;
+  if (verdict == PieceOutcome::Hit) {
     search.toi = first_root_lower_bound(t0, t1, bernstein);
     return PieceOutcome::Hit;
   }
