@@ -1,18 +1,21 @@
 // Candidate search over bounding volume hierarchies (Jin et al., section 3.2.1): simultaneous depth-first descent of
-// two hierarchies, or of one against itself, then swept-box tests of the primitives owned by overlapping leaves.
+// two hierarchies, or of one against itself, then swept-box tests of the primitives owned by overlapping leaves
+// (leaf_pairs.cpp).
 // Sphere hierarchies follow the paper's root-node double box: root spheres first, then the root AABBs (built here, only
 // when the spheres overlap), then the descent, which tests each node pair's spheres and, when they overlap, its boxes
-// (loose spheres alone let far more node pairs through on thin cloth). The search is split into independent tasks for TBB; each
-// task writes its own buffer and the buffers are joined in task order, so the output does not depend on the schedule.
+// (loose spheres alone let far more node pairs through on thin cloth). The search is split into independent tasks for
+// TBB; each task writes its own buffer and the buffers are joined in task order, so the output does not depend on the
+// schedule.
 #include "clothcd/broadphase/traversal.hpp"
 
 #include <tbb/parallel_for.h>
 
-#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "broadphase/leaf_pairs.hpp"
 
 namespace clothcd::broadphase {
 namespace {
@@ -77,248 +80,6 @@ struct BoxObb {
   const Bvh* b;
   bool operator()(int i, int j) const { return box_obb_overlap(a->boxes()[i], b->obbs()[j]); }
 };
-
-struct Range {
-  int begin;
-  int end;
-};
-
-Range vertex_range(const Bvh& bvh, const BvhNode& node) {
-  return {bvh.vertex_offset()[node.face_begin], bvh.vertex_offset()[node.face_end]};
-}
-Range edge_range(const Bvh& bvh, const BvhNode& node) {
-  return {bvh.edge_offset()[node.face_begin], bvh.edge_offset()[node.face_end]};
-}
-
-// Union of the swept boxes of a leaf's triangles. It bounds every primitive the leaf owns (a vertex or edge box lies
-// inside the box of its owning triangle), so a primitive that misses it misses every primitive of the leaf. AABB and
-// sphere hierarchies store it as the node box.
-FlatBox leaf_box(const Bvh& bvh, int node) {
-  if (!bvh.boxes().empty()) return bvh.boxes()[node];
-  const BvhNode& leaf = bvh.nodes()[node];
-  FlatBox b = empty_flat_box();
-  for (int p = leaf.face_begin; p < leaf.face_end; ++p) b.expand(bvh.ordered_face_boxes()[p]);
-  return b;
-}
-
-// The leaf's box as an outward-rounded float box: the packed node box, or packed from leaf_box() for OBB hierarchies.
-PackedBox packed_leaf_box(const Bvh& bvh, int node) {
-  if (bvh.packed_node_boxes().size() > 0) return bvh.packed_node_boxes().at(node);
-  return pack_box(leaf_box(bvh, node));
-}
-
-// For each 4-bit lane mask: the passing lanes in order (padded with lane 0) and how many there are.
-struct LaneTable {
-  std::array<std::array<int, 4>, 16> lanes{};
-  std::array<int, 16> count{};
-};
-
-constexpr LaneTable make_lane_table() {
-  LaneTable table;
-  for (int mask = 0; mask < 16; ++mask) {
-    for (int lane = 0; lane < 4; ++lane) {
-      if ((mask >> lane) & 1) table.lanes[mask][table.count[mask]++] = lane;
-    }
-  }
-  return table;
-}
-
-constexpr LaneTable kLaneTable = make_lane_table();
-
-// Writes the positions j in [begin, end) whose bit is set in `mask4(j)` (bit k for position j + k, evaluated four
-// positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent branch: the group's
-// bits index a table of the passing lanes, all four slots are written, and the count advances by the number set.
-template <class Mask4>
-int select_lanes(int begin, int end, std::vector<int>& out, const Mask4& mask4) {
-  if (out.size() < static_cast<std::size_t>(end - begin + 4)) out.resize(static_cast<std::size_t>(end - begin + 4));
-  int n = 0;
-  for (int j = begin; j < end; j += 4) {
-    const int lanes = end - j < 4 ? end - j : 4;
-    const unsigned mask = mask4(j) & ((1u << lanes) - 1u);
-    const std::array<int, 4>& passing = kLaneTable.lanes[mask];
-    for (int k = 0; k < 4; ++k) out[n + k] = j + passing[k];
-    n += kLaneTable.count[mask];
-  }
-  return n;
-}
-
-// The positions j in [begin, end) whose packed box may overlap `q` (see select_lanes): every position whose
-// double-precision box overlaps the box `q` was made from, and maybe a few more.
-int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox& q, std::vector<int>& out) {
-  return select_lanes(begin, end, out, [&](int j) { return lane_bits(boxes.overlap_lanes(j, q)); });
-}
-
-// Lists of one search task, reused from leaf pair to leaf pair.
-struct LeafScratch {
-  std::vector<int> selected;  // primitives of one leaf whose box overlaps the other leaf's box
-  std::vector<int> hits;      // primitives of the other leaf that pass every test against one selected primitive
-};
-
-// Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
-// `mask4(j)`, four positions at a time on packed data (bit k for position j + k; it may pass pairs that `confirm`
-// rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes. (Here most groups pass
-// nothing, so a loop over the set bits costs less than select_lanes' table writes.)
-template <class Mask4, class Confirm>
-int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4, const Confirm& confirm) {
-  if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
-  int n = 0;
-  for (int j = begin; j < end; j += 4) {
-    const int lanes = end - j < 4 ? end - j : 4;  // a select, not a branch: the last group of a range is often short
-    unsigned mask = mask4(j) & ((1u << lanes) - 1u);
-    while (mask != 0) {
-      const int k = j + __builtin_ctz(mask);
-      mask &= mask - 1u;
-      out[n] = k;
-      n += confirm(k) ? 1 : 0;
-    }
-  }
-  return n;
-}
-
-// Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
-// primitive is first tested against the other leaf's box.
-// With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
-void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
-                       CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
-  const Bvh& ta = *a.bvh;
-  const Bvh& tb = *b.bvh;
-  const BvhNode& la = ta.nodes()[na];
-  const BvhNode& lb = tb.nodes()[nb];
-  const PackedBox box_a = packed_leaf_box(ta, na), box_b = packed_leaf_box(tb, nb);
-  // Whether the vertex at owned position i of the vertex body, or the face at tree position p of the face body, brings
-  // a moved vertex of body a into the pair.
-  auto wanted = [&](bool vertex_in_a, int i, int p) {
-    if (moved == nullptr) return true;
-    if (vertex_in_a) return moved[ta.owned_vertices()[i]] != 0;
-    const int* f = ta.ordered_faces().data() + 3 * p;
-    return moved[f[0]] != 0 || moved[f[1]] != 0 || moved[f[2]] != 0;
-  };
-  auto vertices_against_faces = [&](const BodyView& vertex_body, const BvhNode& vertex_leaf, const BodyView& face_body,
-                                    const BvhNode& face_leaf, const PackedBox& face_leaf_box) {
-    const Bvh& tv = *vertex_body.bvh;
-    const Bvh& tf = *face_body.bvh;
-    const bool vertex_in_a = &vertex_body == &a;
-    const FlatBox* vertex_boxes = tv.ordered_vertex_boxes().data();
-    const FlatBox* face_boxes = tf.ordered_face_boxes().data();
-    const Range vr = vertex_range(tv, vertex_leaf);
-    const int selected = select_packed(tv.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
-    stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
-    for (int k = 0; k < selected; ++k) {
-      const int i = scratch.selected[k];
-      const FlatBox& box = vertex_boxes[i];
-      const PackedBox q = tv.packed_vertex_boxes().at(i);
-      const int hits = collect_packed(
-          face_leaf.face_begin, face_leaf.face_end, scratch.hits,
-          [&](int p) { return lane_bits(tf.packed_face_boxes().overlap_lanes(p, q)); },
-          [&](int p) { return box.overlaps(face_boxes[p]); });
-      for (int h = 0; h < hits; ++h) {
-        const int p = scratch.hits[h];
-        if (wanted(vertex_in_a, i, p)) {
-          out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
-        }
-      }
-    }
-  };
-  vertices_against_faces(a, la, b, lb, box_b);
-  vertices_against_faces(b, lb, a, la, box_a);
-  const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
-  const int* edges_a = ta.ordered_edges().data();
-  const FlatBox* edge_boxes_a = ta.ordered_edge_boxes().data();
-  const FlatBox* edge_boxes_b = tb.ordered_edge_boxes().data();
-  int selected = select_packed(ta.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
-  if (moved != nullptr) {  // keep the edges with a moved vertex
-    int kept = 0;
-    for (int k = 0; k < selected; ++k) {
-      const int i = scratch.selected[k];
-      scratch.selected[kept] = i;
-      kept += (moved[edges_a[2 * i]] | moved[edges_a[2 * i + 1]]) != 0 ? 1 : 0;
-    }
-    selected = kept;
-  }
-  stats.primitive_tests += (ea.end - ea.begin) + selected * (eb.end - eb.begin);
-  for (int k = 0; k < selected; ++k) {
-    const int i = scratch.selected[k];
-    const FlatBox& box = edge_boxes_a[i];
-    const PackedBox q = ta.packed_edge_boxes().at(i);
-    const int hits = collect_packed(
-        eb.begin, eb.end, scratch.hits, [&](int j) { return lane_bits(tb.packed_edge_boxes().overlap_lanes(j, q)); },
-        [&](int j) { return box.overlaps(edge_boxes_b[j]); });
-    for (int h = 0; h < hits; ++h) {
-      out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[scratch.hits[h]]});
-    }
-  }
-}
-
-// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Each primitive is
-// first tested against the other leaf's box; a pair passes when the boxes overlap and no vertex is shared. With
-// `moved` (flags per vertex), only pairs with a moved vertex are produced.
-void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
-                      TraversalStats& stats, LeafScratch& scratch) {
-  const Bvh& t = *body.bvh;
-  const BvhNode& la = t.nodes()[na];
-  const BvhNode& lb = t.nodes()[nb];
-  const bool same = na == nb;
-  const int* faces = t.ordered_faces().data();
-  const int* edges = t.ordered_edges().data();
-  const FlatBox* vertex_boxes = t.ordered_vertex_boxes().data();
-  const FlatBox* face_boxes = t.ordered_face_boxes().data();
-  const FlatBox* edge_boxes = t.ordered_edge_boxes().data();
-  auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf,
-                                    const PackedBox& face_leaf_box) {
-    const Range vr = vertex_range(t, vertex_leaf);
-    const int selected = select_packed(t.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
-    stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
-    for (int k = 0; k < selected; ++k) {
-      const int i = scratch.selected[k];
-      const int v = t.owned_vertices()[i];
-      const FlatBox& box = vertex_boxes[i];
-      const PackedBox q = t.packed_vertex_boxes().at(i);
-      const int hits = collect_packed(
-          face_leaf.face_begin, face_leaf.face_end, scratch.hits,
-          [&](int p) {
-            return lane_bits(t.packed_face_boxes().overlap_lanes(p, q) & ~t.packed_faces().face_uses_lanes(p, v));
-          },
-          [&](int p) { return box.overlaps(face_boxes[p]); });
-      for (int h = 0; h < hits; ++h) {
-        const int p = scratch.hits[h];
-        const int* f = faces + 3 * p;
-        if (moved == nullptr || moved[v] || moved[f[0]] || moved[f[1]] || moved[f[2]]) {
-          out.vertex_face.push_back({body.body, v, body.body, t.face_order()[p]});
-        }
-      }
-    }
-  };
-  const PackedBox box_a = packed_leaf_box(t, na), box_b = packed_leaf_box(t, nb);
-  vertices_against_faces(la, lb, box_b);
-  if (!same) vertices_against_faces(lb, la, box_a);
-  const Range ea = edge_range(t, la), eb = edge_range(t, lb);
-  const int selected = select_packed(t.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
-  stats.primitive_tests += ea.end - ea.begin;
-  for (int k = 0; k < selected; ++k) {
-    const int i = scratch.selected[k];
-    const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
-    const FlatBox& box = edge_boxes[i];
-    const int first = same ? i + 1 : eb.begin;
-    stats.primitive_tests += eb.end - first;
-    const PackedBox q = t.packed_edge_boxes().at(i);
-    const int hits = collect_packed(
-        first, eb.end, scratch.hits,
-        [&](int j) {
-          const PackedVertexIds& ids = t.packed_edges();
-          return lane_bits(t.packed_edge_boxes().overlap_lanes(j, q) &
-                           ~(ids.edge_uses_lanes(j, a0) | ids.edge_uses_lanes(j, a1)));
-        },
-        [&](int j) { return box.overlaps(edge_boxes[j]); });
-    for (int h = 0; h < hits; ++h) {
-      const int j = scratch.hits[h];
-      const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-      if (moved == nullptr || moved[a0] || moved[a1] || moved[b0] || moved[b1]) {
-        const int e = t.owned_edges()[i], g = t.owned_edges()[j];
-        out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
-      }
-    }
-  }
-}
 
 int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - bvh.nodes()[node].face_begin; }
 
@@ -410,7 +171,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
 
   auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
     std::vector<Task> stack{first};
-    LeafScratch scratch;
+    detail::LeafScratch scratch;
     while (!stack.empty()) {
       const Task task = stack.back();
       stack.pop_back();
@@ -473,8 +234,8 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
   const Bvh& t = *body.bvh;
   check_moved(body, settings);
   const std::uint8_t* moved = settings.moved_vertices != nullptr ? settings.moved_vertices->data() : nullptr;
-  auto leaf_work = [&body, moved](const Task& task, CandidateSet& o, TraversalStats& s, LeafScratch& scratch) {
-    leaf_pair_within(body, task.a, task.b, moved, o, s, scratch);
+  auto leaf_work = [&body, moved](const Task& task, CandidateSet& o, TraversalStats& s, detail::LeafScratch& scratch) {
+    detail::leaf_pair_within(body, task.a, task.b, moved, o, s, scratch);
   };
   const Task root{0, 0, true, true};
   // Sphere hierarchies descend on their node boxes here: neighbouring cloth regions always touch, and their boxes
@@ -496,8 +257,8 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
   const Bvh& tb = *b.bvh;
   check_moved(a, settings);
   const std::uint8_t* moved = settings.moved_vertices != nullptr ? settings.moved_vertices->data() : nullptr;
-  auto leaf_work = [&a, &b, moved](const Task& task, CandidateSet& o, TraversalStats& s, LeafScratch& scratch) {
-    leaf_pair_between(a, b, task.a, task.b, moved, o, s, scratch);
+  auto leaf_work = [&a, &b, moved](const Task& task, CandidateSet& o, TraversalStats& s, detail::LeafScratch& scratch) {
+    detail::leaf_pair_between(a, b, task.a, task.b, moved, o, s, scratch);
   };
   const VolumeKind ka = ta.settings().volume, kb = tb.settings().volume;
   if (ka == VolumeKind::Sphere && kb == VolumeKind::Sphere) {

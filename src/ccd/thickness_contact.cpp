@@ -9,10 +9,10 @@
 //   - proven hit when d(a) <= h - margin at its start (everything before was cleared, so toi = a), or when d(b) is
 //     (toi = a + (d(a) - h - margin) / L, before which the bound keeps the distance above h);
 //   - at the depth or evaluation limit a ConservativeHit at a, upgraded to Hit when a later sample already proved contact.
-// Before a piece is split, it is also cleared by a projection: along the gap direction n of the closest points at either
-// end, every n . (x_i - y_j) (points x of the first primitive, y of the second) is linear in t, so if all of them exceed
-// (h + margin) |n| at both ends, they do on the whole piece, and so does the distance. This clears in one step the
-// pieces of a pair sliding past at just over h, which the Lipschitz bound only clears after many splits.
+// Before a piece is split, it is also cleared by a projection: along the gap direction n of the closest points at
+// either end, every n . (x_i - y_j) (points x of the first primitive, y of the second) is linear in t, so if all of
+// them exceed (h + margin) |n| at both ends, they do on the whole piece, and so does the distance. This clears in one
+// step the pieces of a pair sliding past at just over h, which the Lipschitz bound only clears after many splits.
 // margin covers the double evaluation of positions and distances (a few ulps of the coordinates) and the 1e-8
 // degeneracy cut-off of closest_points.cpp (relative to the pair's extent).
 #include "ccd/thickness_contact.hpp"
@@ -103,7 +103,8 @@ Outcome search_piece(Search& search, double a, double b, const Sample& sa, const
     return Outcome::Hit;
   }
   if (0.5 * (da + db - search.lipschitz * (b - a)) > search.clear_above) return Outcome::Clear;
-  if (db > search.hit_below && (projection_clears(search, sa.gap, sa, sb) || projection_clears(search, sb.gap, sa, sb))) {
+  if (db > search.hit_below &&
+      (projection_clears(search, sa.gap, sa, sb) || projection_clears(search, sb.gap, sa, sb))) {
     return Outcome::Clear;
   }
   if (db <= search.hit_below) {

@@ -1,0 +1,32 @@
+#pragma once
+// The primitive tests of one pair of overlapping leaves (internal to the broad phase): vertices against faces and
+// edges against edges by their swept boxes, producing candidate pairs. Each primitive is first pre-selected against
+// the other leaf's box, then tested against the other leaf's primitives four at a time on packed single-precision
+// boxes (and, within one body, packed vertex indices to skip pairs that share a vertex); the few passes are confirmed
+// on the double-precision boxes, so the output is exactly that of the box tests.
+
+#include <cstdint>
+#include <vector>
+
+#include "clothcd/broadphase/candidates.hpp"
+#include "clothcd/broadphase/traversal.hpp"
+
+namespace clothcd::broadphase::detail {
+
+/// Lists of one search task, reused from leaf pair to leaf pair.
+struct LeafScratch {
+  std::vector<int> selected;  ///< Primitives of one leaf whose box overlaps the other leaf's box
+  std::vector<int> hits;      ///< Primitives of the other leaf that pass every test against one selected primitive
+};
+
+/// Candidate pairs of leaf `na` of body a and leaf `nb` of body b (different bodies) into `out`. With `moved` (flags
+/// per vertex of body a), only pairs with a moved vertex of body a are produced.
+void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
+                       CandidateSet& out, TraversalStats& stats, LeafScratch& scratch);
+
+/// Candidate pairs of leaves `na` and `nb` of one body (na == nb: the leaf against itself), skipping pairs that share
+/// a vertex. With `moved` (flags per vertex), only pairs with a moved vertex are produced.
+void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
+                      TraversalStats& stats, LeafScratch& scratch);
+
+}  // namespace clothcd::broadphase::detail
