@@ -160,8 +160,11 @@ class Simplifier {
       }
       const Candidate c = heap_.pop();
       if (!is_current(c)) continue;
-      // Cache misses dominate: start loading what the next candidate will read while this one is handled.
+      // Cache misses dominate: start loading what the next candidate will read while this one is handled, and this
+      // candidate's faces (its face lists were loaded by the last iteration) while its pair is placed.
       if (!heap_.empty()) prefetch_vertices(heap_.top());
+      prefetch_faces(c.u);
+      prefetch_faces(c.v);
       const Quadric q = sum(quadric_[c.u], quadric_[c.v]);
       const Placement placement = place(q, position_[c.u], position_[c.v]);
       const double error = q.area > 0 ? std::sqrt(placement.cost / q.area) : 0.0;
@@ -191,6 +194,13 @@ class Simplifier {
       __builtin_prefetch(&position_[size_t(w)]);
       vertex_faces_.prefetch_place(w);
     }
+  }
+
+  // Starts loading the faces in v's list. An index loop: GCC 12 at -O3 deleted the same loop written as a range-for
+  // over the list (no prefetch left in the object code).
+  void prefetch_faces(int v) const {
+    const int* list = vertex_faces_.begin(v);
+    for (int k = 0, n = vertex_faces_.size(v); k < n; ++k) __builtin_prefetch(&faces_[size_t(list[k])]);
   }
 
   // False for a heap entry whose vertices were contracted away or changed since it was pushed (one small array, so the
