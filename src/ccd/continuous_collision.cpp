@@ -12,7 +12,8 @@
 //     one triangle of W has three 2D cross products of the same strict sign (a non-degenerate projected triangle with
 //     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
 //     then tightened to the first sub-piece where D is not certainly non-zero.
-// A piece left undecided at the maximum depth hands the whole query to the exact expansion tier
+// A piece left undecided at the maximum depth hands the whole query to the exact expansion tier (so does, before any
+// subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could decide)
 // (expansion_collision.cpp), and what that cannot decide to the exact rational reference, so no collision is ever
 // missed. With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
 // thickness_contact.cpp decides (no rational arithmetic).
@@ -189,6 +190,15 @@ PieceOutcome classify_projections(const PointSet& boxes, bool d_changes_sign) {
   return PieceOutcome::Undecided;
 }
 
+// True when D may vanish at the step's end with positions x and the origin may be in conv W there: pieces ending
+// there can never be decided by intervals (an exact touch at t = 0 or 1), so the exact tiers decide the query at once.
+bool undecidable_end(PairKind kind, const Positions& x) {
+  const IVec a = x[1] - x[0], b = x[2] - x[0], c = x[3] - x[0];
+  if (certain_sign(dot(a, cross(b, c))) != 0) return false;
+  const PointSet w = difference_points(kind, x);
+  return !boxes_exclude_origin(w, 0.0) && classify_projections(w, false) != PieceOutcome::Clear;
+}
+
 struct Search {
   const CcdQuery& query;
   double toi = 1.0;
@@ -322,10 +332,10 @@ CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
 
 CcdResult contact_without_thickness(const CcdQuery& query, bool nonpenetration_checked = false) {
   if (!nonpenetration_checked && nonpenetration_filter_culls(query)) return CcdResult{};
-  if (fits_fast_path(query)) {
+  const Positions start = positions_at(query, 0.0), end = positions_at(query, 1.0);
+  if (fits_fast_path(query) && !undecidable_end(query.kind, start) && !undecidable_end(query.kind, end)) {
     Search search{query, 1.0};
-    const PieceOutcome outcome =
-        search_exact_contact(search, 0.0, 1.0, positions_at(query, 0.0), positions_at(query, 1.0), 0);
+    const PieceOutcome outcome = search_exact_contact(search, 0.0, 1.0, start, end, 0);
     if (outcome == PieceOutcome::Clear) return CcdResult{};
     if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
   }
