@@ -12,10 +12,10 @@
 //     one triangle of W has three 2D cross products of the same strict sign (a non-degenerate projected triangle with
 //     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
 //     then tightened to the first sub-piece where D is not certainly non-zero.
-// A piece left undecided at the maximum depth hands the whole query to the exact expansion tier (so does, before any
-// subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could decide)
+// A piece left undecided at the maximum depth hands the whole query to the exact expansion tier
 // (expansion_collision.cpp), and what that cannot decide to the exact rational reference, so no collision is ever
-// missed. With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
+// missed; so does, before any subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could
+// decide. With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
 // thickness_contact.cpp decides (no rational arithmetic).
 #include <algorithm>
 #include <cmath>
