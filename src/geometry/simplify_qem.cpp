@@ -189,11 +189,16 @@ class Simplifier {
   }
 
  private:
-  // Called once per vertex, not in a loop over {u, v}: GCC 12 at -O3 deleted that loop (no prefetch was left).
-  void prefetch_vertex(int w) const {
+  // Starts loading w's quadric (its first and last bytes).
+  void prefetch_quadric(int w) const {
     const char* bytes = reinterpret_cast<const char*>(&quadric_[size_t(w)]);
     __builtin_prefetch(bytes);
     __builtin_prefetch(bytes + sizeof(Quadric) - 1);
+  }
+
+  // Called once per vertex, not in a loop over {u, v}: GCC 12 at -O3 deleted that loop (no prefetch was left).
+  void prefetch_vertex(int w) const {
+    prefetch_quadric(w);
     __builtin_prefetch(&position_[size_t(w)]);
     vertex_faces_.prefetch_place(w);
   }
@@ -411,6 +416,7 @@ class Simplifier {
       for (int w : faces_[size_t(f)]) {
         const unsigned old = mark_[size_t(w)];  // written back unchanged for v: a select, not a branch
         mark_[size_t(w)] = w != v ? value : old;
+        prefetch_quadric(w);
       }
     }
   }
@@ -422,7 +428,8 @@ class Simplifier {
   // The corner (0, 1 or 2) of t that is v, which t must have.
   [[nodiscard]] static int corner_of(const std::array<int, 3>& t, int v) { return int(t[1] == v) + 2 * int(t[2] == v); }
 
-  // Rejects contractions that would change the topology badly or fold the surface (see simplify_qem's contract).
+  // Rejects contractions that would change the topology badly or fold the surface (see simplify_qem's contract). Its
+  // loops over the faces of u and v also start loading every neighbour's quadric: contract() re-costs those pairs.
   bool contraction_is_valid(int u, int v, const Eigen::Vector3d& p) {
     int shared = 0;
     for (int f : live_faces_of(u)) shared += has(faces_[size_t(f)], v);
@@ -441,6 +448,7 @@ class Simplifier {
         const bool first_seen = (w != v) & (w != u) & (old == of_u);
         mark_[size_t(w)] = first_seen ? common_mark : old;
         common += int(first_seen);
+        prefetch_quadric(w);
       }
     }
     if (common != shared) return false;
@@ -495,8 +503,7 @@ class Simplifier {
     }
     vertex_faces_.clear(u);
     const auto faces_v = live_faces_of(v);
-    // Gather the neighbours and start loading their quadrics (two cache lines each, mostly cold) before costing any
-    // pair, so the loads overlap instead of stalling one push after another.
+    // Gather the neighbours (their quadrics, mostly cold, were prefetched by contraction_is_valid's marking loops).
     // Each corner is written to the list and kept only when new (v itself is marked too, harmlessly): no branch.
     const unsigned pushed = ++epoch_;
     neighbours_.resize(3 * size_t(faces_v.end() - faces_v.begin()));
@@ -507,9 +514,6 @@ class Simplifier {
         mark_[size_t(w)] = pushed;
         neighbours_[count] = w;
         count += size_t(fresh);
-        const char* bytes = reinterpret_cast<const char*>(&quadric_[size_t(w)]);
-        __builtin_prefetch(bytes);
-        __builtin_prefetch(bytes + sizeof(Quadric) - 1);
       }
     }
     neighbours_.resize(count);
