@@ -417,6 +417,7 @@ class Simplifier {
         const unsigned old = mark_[size_t(w)];  // written back unchanged for v: a select, not a branch
         mark_[size_t(w)] = w != v ? value : old;
         prefetch_quadric(w);
+        __builtin_prefetch(&position_[size_t(w)]);
       }
     }
   }
@@ -429,7 +430,8 @@ class Simplifier {
   [[nodiscard]] static int corner_of(const std::array<int, 3>& t, int v) { return int(t[1] == v) + 2 * int(t[2] == v); }
 
   // Rejects contractions that would change the topology badly or fold the surface (see simplify_qem's contract). Its
-  // loops over the faces of u and v also start loading every neighbour's quadric: contract() re-costs those pairs.
+  // loops over the faces of u and v also start loading every neighbour's quadric (contract() re-costs those pairs)
+  // and position (the flip check reads them).
   bool contraction_is_valid(int u, int v, const Eigen::Vector3d& p) {
     int shared = 0;
     for (int f : live_faces_of(u)) shared += has(faces_[size_t(f)], v);
@@ -449,6 +451,7 @@ class Simplifier {
         mark_[size_t(w)] = first_seen ? common_mark : old;
         common += int(first_seen);
         prefetch_quadric(w);
+        __builtin_prefetch(&position_[size_t(w)]);
       }
     }
     if (common != shared) return false;
