@@ -119,8 +119,8 @@ void sum_into(const Expansion& e, const Expansion& f, double f_sign, Expansion& 
   // kept <= i), compressed afterwards.
   double* out = count <= Expansion::kCapacity ? h.terms_ : merged;
   std::size_t written = 0;
-  double q = merged[0];
-  for (std::size_t i = 1; i < count; ++i) {
+  double q = 0.0;  // the first two-sum just takes merged[0] (exactly, no rest)
+  for (std::size_t i = 0; i < count; ++i) {
     double q_new, rest;
     two_sum(q, merged[i], q_new, rest);
     if (rest != 0.0) out[written++] = rest;
