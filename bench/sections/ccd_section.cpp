@@ -150,8 +150,9 @@ SectionReport run_ccd(const BenchContext& context) {
         "double cubic solving takes 0.13 us per query but misses 5 (VF) / 3 (EE) collisions; the Bernstein filter "
         "alone culls 74% (VF) / 86% (EE). The paper's removal rates (Table 4: 34-39% non-penetration, 52-55% "
         "projection, 53-58% both, 52-57% network) were measured on its own simulation pairs, not on these queries: "
-        "see the filters section for the comparable run. The mean time is dominated by the few queries floating "
-        "point cannot decide, which go to the exact rational reference.\n\n";
+        "see the filters section for the comparable run. The mean time is dominated by the few queries that touch "
+        "exactly (often at an irrational time): interval arithmetic cannot decide them, and the exact floating-point "
+        "expansion tier does; *exact fallbacks* counts those that needed GMP rational arithmetic.\n\n";
   md += "![Culled fraction per mode](ccd_culling.png)\n\n*ccd_culling.png: culled fraction (0 to 1), groups VF, EE; " +
         legend({"none", "nonpenetration", "projection", "combined", "network"}) + ".*\n";
   return {md, {"ccd.csv", "ccd_culling.png"}};
