@@ -79,11 +79,18 @@ bool separated_along(const CcdQuery& query, const Eigen::Vector3d& s, double thr
   return true;
 }
 
-// h |s| rounded up, so that a Z beyond it is certainly beyond the true threshold.
-double threshold_for(double thickness, const Eigen::Vector3d& s) {
+// h |s| rounded up, so that a Z beyond it is certainly beyond the true threshold (`norm` is |s| to within a few
+// units in the last place; the factor 1 + 1e-12 covers that and the products' rounding).
+double threshold_for(double thickness, double norm) {
   if (thickness <= 0.0) return 0.0;
-  return thickness * std::sqrt(s.squaredNorm()) * (1.0 + 1e-12);
+  return thickness * norm * (1.0 + 1e-12);
 }
+
+// A direction of the projection filter with its length.
+struct Direction {
+  Eigen::Vector3d s;
+  double norm;
+};
 
 }  // namespace
 
@@ -112,9 +119,10 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings)
 bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
                              const ProjectionFilterOptions& options) {
   // Eq. (10)'s directions without their normalisation (the sign tests do not depend on it; h is scaled by |s|).
-  static const std::array<Eigen::Vector3d, 5> kDirections{Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 1, 0),
-                                                          Eigen::Vector3d(1, 0, 1), Eigen::Vector3d(0, 1, 1),
-                                                          Eigen::Vector3d(1, 1, 1)};
+  static const std::array<Direction, 5> kDirections{
+      Direction{Eigen::Vector3d(1, 0, 0), 1.0}, Direction{Eigen::Vector3d(1, 1, 0), std::sqrt(2.0)},
+      Direction{Eigen::Vector3d(1, 0, 1), std::sqrt(2.0)}, Direction{Eigen::Vector3d(0, 1, 1), std::sqrt(2.0)},
+      Direction{Eigen::Vector3d(1, 1, 1), std::sqrt(3.0)}};
   // The primitives' own directions first when asked: they separate most pairs that can be separated (a cloth resting
   // above a surface), so the fixed directions are rarely reached.
   if (options.use_primitive_normals) {
@@ -123,12 +131,14 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
       // Any fixed vector is a valid direction, so the rounded normal needs no error bound of its own.
       const Eigen::Vector3d s =
           query.kind == PairKind::VertexFace ? (x[2] - x[1]).cross(x[3] - x[1]) : (x[1] - x[0]).cross(x[3] - x[2]);
-      if (!s.allFinite() || s.squaredNorm() == 0.0) continue;
-      if (separated_along(query, s, threshold_for(settings.thickness, s))) return true;
+      const double squared_norm = s.squaredNorm();
+      if (!s.allFinite() || squared_norm == 0.0) continue;
+      const double norm = settings.thickness > 0.0 ? std::sqrt(squared_norm) : 0.0;
+      if (separated_along(query, s, threshold_for(settings.thickness, norm))) return true;
     }
   }
-  for (const Eigen::Vector3d& s : kDirections)
-    if (separated_along(query, s, threshold_for(settings.thickness, s))) return true;
+  for (const Direction& d : kDirections)
+    if (separated_along(query, d.s, threshold_for(settings.thickness, d.norm))) return true;
   return false;
 }
 
