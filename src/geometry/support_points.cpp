@@ -82,4 +82,36 @@ double SupportPoints::max_dot(const Eigen::Vector3d& direction) const {
   return best;
 }
 
+void SupportPoints::group_min_max(std::size_t g, const Eigen::Vector3d& direction, double& lo, double& hi) const {
+  for (int i = begin_[g]; i < begin_[g + 1]; ++i) {
+    const double d = points_[size_t(i)].dot(direction);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+}
+
+std::pair<double, double> SupportPoints::min_max_dot(const Eigen::Vector3d& direction) const {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  const size_t groups = centre_.size();
+  if (groups == 0) return {lo, hi};
+  const double length = direction.norm();
+  // As max_dot, for both ends at once: the group whose sphere reaches farthest each way first, then every group whose
+  // sphere may reach beyond either end found so far (a group's sphere spans centre . direction -+ radius |direction|).
+  size_t first_lo = 0, first_hi = 0;
+  double best_lo = std::numeric_limits<double>::infinity(), best_hi = -best_lo;
+  for (size_t g = 0; g < groups; ++g) {
+    const double c = centre_[g].dot(direction), r = radius_[g] * length;
+    if (c - r < best_lo) best_lo = c - r, first_lo = g;
+    if (c + r > best_hi) best_hi = c + r, first_hi = g;
+  }
+  group_min_max(first_lo, direction, lo, hi);
+  if (first_hi != first_lo) group_min_max(first_hi, direction, lo, hi);
+  for (size_t g = 0; g < groups; ++g) {
+    if (g == first_lo || g == first_hi) continue;
+    const double c = centre_[g].dot(direction), r = radius_[g] * length;
+    if (c - r < lo || c + r > hi) group_min_max(g, direction, lo, hi);
+  }
+  return {lo, hi};
+}
+
 }  // namespace clothcd::geometry

@@ -28,6 +28,9 @@ void check_against_scan(const Vertices& points, std::mt19937_64& random, int gro
     if (q == 7) d = 1e7 * d;
     CAPTURE(q, d.transpose());
     REQUIRE(support.max_dot(d) == scan_max(points, d));  // the same point wins: bitwise equal
+    const auto [low, high] = support.min_max_dot(d);
+    REQUIRE(high == scan_max(points, d));
+    REQUIRE(low == -scan_max(points, -d));
   }
 }
 
@@ -62,5 +65,8 @@ TEST_CASE("SupportPoints on degenerate sets", "[geometry][obb][support]") {
   for (const Vertices* points : {&grid, &plane, &line, &same}) check_against_scan(*points, random);
   const SupportPoints empty{Vertices(0, 3)};
   CHECK(empty.max_dot(Eigen::Vector3d::UnitX()) == -std::numeric_limits<double>::infinity());
+  const auto [low, high] = empty.min_max_dot(Eigen::Vector3d::UnitX());
+  CHECK(low == std::numeric_limits<double>::infinity());
+  CHECK(high == -std::numeric_limits<double>::infinity());
   CHECK(SupportPoints().size() == 0);
 }

@@ -3,6 +3,7 @@
 /// Exact support queries (largest projection on a direction) over a fixed point set, faster than a scan: the points are
 /// grouped once, and a query scans only the groups whose bounding sphere could beat the best point found so far.
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,12 +26,18 @@ class SupportPoints {
   /// round-off) does not exceed the best point already found, so the skipped points cannot hold the maximum.
   [[nodiscard]] double max_dot(const Eigen::Vector3d& direction) const;
 
+  /// {min, max} over the points p of direction . p in one walk over the groups: exactly {-max_dot(-direction),
+  /// max_dot(direction)} (negating the direction negates every product exactly), {+infinity, -infinity} when empty.
+  [[nodiscard]] std::pair<double, double> min_max_dot(const Eigen::Vector3d& direction) const;
+
   /// Number of points.
   [[nodiscard]] std::size_t size() const { return points_.size(); }
 
  private:
   [[nodiscard]] double group_bound(std::size_t g, const Eigen::Vector3d& direction, double length) const;
   [[nodiscard]] double group_max(std::size_t g, const Eigen::Vector3d& direction) const;
+  // Widens [lo, hi] by the projections of group g's points.
+  void group_min_max(std::size_t g, const Eigen::Vector3d& direction, double& lo, double& hi) const;
 
   std::vector<Eigen::Vector3d> points_;  // grouped: group g holds points_[begin_[g] .. begin_[g + 1])
   std::vector<int> begin_;
