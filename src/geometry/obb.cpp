@@ -153,38 +153,42 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
       }
     }
   }
-  // S': the distinct slab winners, in order of first appearance.
+  // S': the distinct slab winners, in order of first appearance (a repeat is written and then overwritten).
   auto& kept_index = scratch.kept_index;
-  kept_index.clear();
+  kept_index.resize(size_t(3 * s * kPerSlab));
+  size_t kept_count = 0;
   for (int k = 0; k < 3 * s * kPerSlab; ++k) {
     const int i = best[size_t(k)];
-    if (i >= 0 && !keep[size_t(i)]) {
-      keep[size_t(i)] = 1;
-      kept_index.push_back(i);
-    }
+    if (i < 0) continue;  // an empty slab
+    kept_index[kept_count] = i;
+    kept_count += !keep[size_t(i)];
+    keep[size_t(i)] = 1;
   }
+  kept_index.resize(kept_count);
   // Eqs. 17-18: mean and covariance of the corners of the triangles touching the kept set S'.
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
   long long corners = 0;
   if (hints) {  // the faces of the kept vertices, each once, from their moments at rest
+    // First the distinct faces in order of first appearance (without branches, as S' above), then their moments.
     auto& seen = scratch.face_seen;
-    seen.resize(static_cast<size_t>(faces.rows()), 0);
-    for (int pass = 0; pass < 2; ++pass) {  // add, then clear the marks
-      for (int i : kept_index) {
-        for (int e = (*hints->face_begin)[size_t(i)]; e < (*hints->face_begin)[size_t(i) + 1]; ++e) {
-          const int f = (*hints->face_list)[size_t(e)];
-          if (pass == 1) {
-            seen[size_t(f)] = 0;
-          } else if (!seen[size_t(f)]) {
-            seen[size_t(f)] = 1;
-            sum += (*hints->face_sum)[size_t(f)];
-            outer += (*hints->face_outer)[size_t(f)];
-            corners += 3;
-          }
-        }
+    auto& kept_faces = scratch.kept_faces;
+    seen.assign(static_cast<size_t>(faces.rows()), 0);
+    kept_faces.resize(static_cast<size_t>(faces.rows()) + 1);  // + 1: a repeat is written after the last new face
+    size_t face_count = 0;
+    for (int i : kept_index) {
+      for (int e = (*hints->face_begin)[size_t(i)]; e < (*hints->face_begin)[size_t(i) + 1]; ++e) {
+        const int f = (*hints->face_list)[size_t(e)];
+        kept_faces[face_count] = f;
+        face_count += !seen[size_t(f)];
+        seen[size_t(f)] = 1;
       }
     }
+    for (size_t j = 0; j < face_count; ++j) {
+      sum += (*hints->face_sum)[size_t(kept_faces[j])];
+      outer += (*hints->face_outer)[size_t(kept_faces[j])];
+    }
+    corners = 3 * static_cast<long long>(face_count);
     sum = hints->rotation * sum;
     outer = hints->rotation * outer * hints->rotation.transpose();
   } else {
@@ -215,6 +219,18 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   const Eigen::Vector3d mean = sum / double(corners);
   const Eigen::Matrix3d axes = principal_axes(outer / double(corners) - mean * mean.transpose());
   return settings.refine_axes ? refine_axes(scratch.kept, axes, scratch) : axes;
+}
+
+// moved = rest moved by pose (same shape). Row by row, summed in the order of the Eigen expression
+// (rest R^T).rowwise() + t (bitwise the same coordinates), which evaluated the product into a heap temporary.
+void move_rows(const Vertices& rest, const Eigen::Isometry3d& pose, Vertices& moved) {
+  const Eigen::Matrix3d r = pose.linear();
+  const Eigen::Vector3d t = pose.translation();
+  const double* from = rest.data();
+  double* to = moved.data();
+  for (Eigen::Index i = 0; i < rest.rows(); ++i, from += 3, to += 3) {
+    for (int k = 0; k < 3; ++k) to[k] = r(k, 0) * from[0] + (r(k, 1) * from[1] + r(k, 2) * from[2]) + t[k];
+  }
 }
 
 Eigen::Matrix3d tight_axes(const Vertices& vertices) {
@@ -364,7 +380,7 @@ SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& se
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
-  moved_.vertices = (simplified_.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
+  move_rows(simplified_.vertices, pose, moved_.vertices);
   const AdaptiveHints hints{pose * rest_centre_, pose.linear(), &face_begin_, &face_list_, &face_sum_, &face_outer_};
   Obb box;
   box.axes = adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_, &hints);
@@ -374,8 +390,9 @@ Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d axis = box.axes.col(k), at_rest = pose.linear().transpose() * axis;
     const double shift = axis.dot(pose.translation());
-    hi[k] = hull_support_.max_dot(at_rest) + shift;
-    lo[k] = -hull_support_.max_dot(-at_rest) + shift;
+    const auto [low, high] = hull_support_.min_max_dot(at_rest);
+    hi[k] = high + shift;
+    lo[k] = low + shift;
   }
   box.center = box.axes * (0.5 * (lo + hi));
   box.half_extents = 0.5 * (hi - lo);
@@ -384,7 +401,7 @@ Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose, const Vertices& original_vertices) {
   if (!original_vertices.allFinite()) throw std::invalid_argument("SimplifiedObb::update: non-finite coordinate");
-  moved_.vertices = (simplified_.vertices * pose.linear().transpose()).rowwise() + pose.translation().transpose();
+  move_rows(simplified_.vertices, pose, moved_.vertices);
   return fit_obb_to_axes(original_vertices, adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_));
 }
 

@@ -40,6 +40,7 @@ struct ObbScratch {
   std::vector<Eigen::Vector2d> plane;    ///< S' projected on a plane.
   std::vector<Eigen::Vector2d> hull;     ///< Its 2-D convex hull.
   std::vector<char> face_seen;           ///< #F flags: triangles of S' already counted (SimplifiedObb only).
+  std::vector<int> kept_faces;           ///< The distinct triangles of S' (SimplifiedObb only).
 };
 
 /// The box of `mesh` (vertices #V x 3, faces #F x 3) by `method`; axes right-handed, half extents >= 0.
