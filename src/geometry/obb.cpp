@@ -154,15 +154,19 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
     }
   }
   // S': the distinct slab winners, in order of first appearance (a repeat is written and then overwritten).
+  // Raw pointers here and below: the stores through char pointers would otherwise make the compiler reload every
+  // vector's data pointer after each store.
   auto& kept_index = scratch.kept_index;
   kept_index.resize(size_t(3 * s * kPerSlab));
+  char* const is_kept = keep.data();
+  int* const kept_rows = kept_index.data();
   size_t kept_count = 0;
   for (int k = 0; k < 3 * s * kPerSlab; ++k) {
     const int i = best[size_t(k)];
     if (i < 0) continue;  // an empty slab
-    kept_index[kept_count] = i;
-    kept_count += !keep[size_t(i)];
-    keep[size_t(i)] = 1;
+    kept_rows[kept_count] = i;
+    kept_count += !is_kept[i];
+    is_kept[i] = 1;
   }
   kept_index.resize(kept_count);
   // Eqs. 17-18: mean and covariance of the corners of the triangles touching the kept set S'.
@@ -171,17 +175,19 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   long long corners = 0;
   if (hints) {  // the faces of the kept vertices, each once, from their moments at rest
     // First the distinct faces in order of first appearance (without branches, as S' above), then their moments.
-    auto& seen = scratch.face_seen;
-    auto& kept_faces = scratch.kept_faces;
-    seen.assign(static_cast<size_t>(faces.rows()), 0);
-    kept_faces.resize(static_cast<size_t>(faces.rows()) + 1);  // + 1: a repeat is written after the last new face
+    scratch.face_seen.assign(static_cast<size_t>(faces.rows()), 0);
+    scratch.kept_faces.resize(static_cast<size_t>(faces.rows()) + 1);  // + 1: a repeat is written after the last new face
+    char* const seen = scratch.face_seen.data();
+    int* const kept_faces = scratch.kept_faces.data();
+    const int* const face_begin = hints->face_begin->data();
+    const int* const face_list = hints->face_list->data();
     size_t face_count = 0;
-    for (int i : kept_index) {
-      for (int e = (*hints->face_begin)[size_t(i)]; e < (*hints->face_begin)[size_t(i) + 1]; ++e) {
-        const int f = (*hints->face_list)[size_t(e)];
+    for (size_t k = 0; k < kept_count; ++k) {
+      for (int e = face_begin[kept_rows[k]]; e < face_begin[kept_rows[k] + 1]; ++e) {
+        const int f = face_list[e];
         kept_faces[face_count] = f;
-        face_count += !seen[size_t(f)];
-        seen[size_t(f)] = 1;
+        face_count += !seen[f];
+        seen[f] = 1;
       }
     }
     for (size_t j = 0; j < face_count; ++j) {
