@@ -79,7 +79,6 @@ int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox&
   return select_lanes(begin, end, out, [&](int j) { return lane_bits(boxes.overlap_lanes(j, q)); });
 }
 
-
 // Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
 // `mask4(j)`, four positions at a time on packed data (bit k for position j + k; it may pass pairs that `confirm`
 // rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes. (Here most groups pass
