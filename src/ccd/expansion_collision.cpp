@@ -132,36 +132,40 @@ Interval enclose(const Expansion& e) {
   return {value - radius, value + radius};
 }
 
+// The Bernstein coefficients (times positive constants) on [lo, lo + width] of sum a_i t^i of degree n in 0..3: the
+// Taylor coefficients at lo by repeated synthetic division, scaled by width^k, then combined. One algorithm for the
+// interval enclosures and the exact expansions; `times(x, c)` multiplies x by the small integer c.
+template <class Number, class Times>
+std::array<Number, 4> bernstein_coefficients(std::array<Number, 4> a, int n, const Number& lo, const Number& width,
+                                             const Times& times) {
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j) a[j] = a[j] + lo * a[j + 1];
+  Number power = width;
+  for (int k = 1; k <= n; ++k) {
+    a[k] = a[k] * power;
+    if (k < n) power = power * width;
+  }
+  switch (n) {
+    case 0:
+      return {a[0]};
+    case 1:
+      return {a[0], a[0] + a[1]};
+    case 2:
+      return {a[0], times(a[0], 2.0) + a[1], a[0] + a[1] + a[2]};
+    default:
+      return {a[0], times(a[0], 3.0) + a[1], times(a[0], 3.0) + times(a[1], 2.0) + a[2], a[0] + a[1] + a[2] + a[3]};
+  }
+}
+
 // The Bernstein signs from outward-rounded interval arithmetic on enclosures of the coefficients; false unless every
 // sign is certain (then the exact computation is skipped).
 bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width,
                               BernsteinSigns& out) {
   std::array<Interval, 4> a;
   for (int i = 0; i <= n; ++i) a[static_cast<std::size_t>(i)] = enclose(p[static_cast<std::size_t>(i)]);
-  const Interval l = enclose(lo), w = enclose(width);
-  for (int i = 0; i < n; ++i)
-    for (int j = n - 1; j >= i; --j) a[j] = a[j] + l * a[j + 1];
-  Interval power = w;
-  for (int k = 1; k <= n; ++k) {
-    a[k] = a[k] * power;
-    if (k < n) power = power * w;
-  }
-  const Interval two = exact(2.0), three = exact(3.0);
+  const std::array<Interval, 4> b = bernstein_coefficients(
+      a, n, enclose(lo), enclose(width), [](const Interval& x, double c) { return exact(c) * x; });
   out.count = n + 1;
-  std::array<Interval, 4> b;
-  switch (n) {
-    case 0:
-      b = {a[0]};
-      break;
-    case 1:
-      b = {a[0], a[0] + a[1]};
-      break;
-    case 2:
-      b = {a[0], two * a[0] + a[1], a[0] + a[1] + a[2]};
-      break;
-    default:
-      b = {a[0], three * a[0] + a[1], three * a[0] + two * a[1] + a[2], a[0] + a[1] + a[2] + a[3]};
-  }
   for (int i = 0; i <= n; ++i) {
     out.sign[static_cast<std::size_t>(i)] = certain_sign(b[static_cast<std::size_t>(i)]);
     if (out.sign[static_cast<std::size_t>(i)] == 0) return false;
@@ -173,30 +177,10 @@ bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const E
 BernsteinSigns bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width) {
   BernsteinSigns out;
   if (n >= 1 && filtered_bernstein_signs(p, n, lo, width, out)) return out;
-  // Taylor coefficients at lo by repeated synthetic division, then scaled by width^k.
-  Poly a = p;
-  for (int i = 0; i < n; ++i)
-    for (int j = n - 1; j >= i; --j) a[j] = a[j] + lo * a[j + 1];
-  Expansion power = width;
-  for (int k = 1; k <= n; ++k) {
-    a[k] = a[k] * power;
-    if (k < n) power = power * width;
-  }
+  const std::array<Expansion, 4> b =
+      bernstein_coefficients(p.c, n, lo, width, [](const Expansion& x, double c) { return x.scaled(c); });
   out.count = n + 1;
-  switch (n) {
-    case 0:
-      out.sign = {a[0].sign()};
-      break;
-    case 1:
-      out.sign = {a[0].sign(), (a[0] + a[1]).sign()};
-      break;
-    case 2:
-      out.sign = {a[0].sign(), (a[0].scaled(2.0) + a[1]).sign(), (a[0] + a[1] + a[2]).sign()};
-      break;
-    default:
-      out.sign = {a[0].sign(), (a[0].scaled(3.0) + a[1]).sign(),
-                  (a[0].scaled(3.0) + a[1].scaled(2.0) + a[2]).sign(), (a[0] + a[1] + a[2] + a[3]).sign()};
-  }
+  for (int i = 0; i <= n; ++i) out.sign[static_cast<std::size_t>(i)] = b[static_cast<std::size_t>(i)].sign();
   return out;
 }
 
