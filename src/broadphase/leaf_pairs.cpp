@@ -100,6 +100,36 @@ int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4
   return n;
 }
 
+// Pairs each selected primitive i of a first set (scratch.selected[0..selected), positions in its tree-ordered arrays)
+// with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes four at a time,
+// minus the lanes that excluded_for(i)(j) sets (pairs that must not be produced), then the double-precision boxes.
+// Calls emit(i, j) for each pair found and returns how many primitive pairs it looked at.
+template <class RangeOf, class ExcludedFor, class Emit>
+long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, const PackedBoxes& second_packed,
+                   const FlatBox* second_boxes, int selected, LeafScratch& scratch, const RangeOf& range_of,
+                   const ExcludedFor& excluded_for, const Emit& emit) {
+  long looked_at = 0;
+  for (int k = 0; k < selected; ++k) {
+    const int i = scratch.selected[k];
+    const FlatBox& box = first_boxes[i];
+    const PackedBox q = first_packed.at(i);
+    const Range range = range_of(i);
+    const auto excluded = excluded_for(i);
+    looked_at += range.end - range.begin;
+    const int hits = collect_packed(
+        range.begin, range.end, scratch.hits,
+        [&](int j) { return lane_bits(second_packed.overlap_lanes(j, q) & ~excluded(j)); },
+        [&](int j) { return box.overlaps(second_boxes[j]); });
+    for (int h = 0; h < hits; ++h) emit(i, scratch.hits[h]);
+  }
+  return looked_at;
+}
+
+// No pair excluded (primitives of different bodies never share a vertex).
+auto exclude_none(int) {
+  return [](int) { return LaneMask{}; };
+}
+
 }  // namespace
 
 // Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
@@ -129,22 +159,14 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     const FlatBox* face_boxes = tf.ordered_face_boxes().data();
     const Range vr = vertex_range(tv, vertex_leaf);
     const int selected = select_packed(tv.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
-    stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
-    for (int k = 0; k < selected; ++k) {
-      const int i = scratch.selected[k];
-      const FlatBox& box = vertex_boxes[i];
-      const PackedBox q = tv.packed_vertex_boxes().at(i);
-      const int hits = collect_packed(
-          face_leaf.face_begin, face_leaf.face_end, scratch.hits,
-          [&](int p) { return lane_bits(tf.packed_face_boxes().overlap_lanes(p, q)); },
-          [&](int p) { return box.overlaps(face_boxes[p]); });
-      for (int h = 0; h < hits; ++h) {
-        const int p = scratch.hits[h];
-        if (wanted(vertex_in_a, i, p)) {
-          out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
-        }
-      }
-    }
+    stats.primitive_tests += (vr.end - vr.begin);
+    stats.primitive_tests += pair_selected(
+        tv.packed_vertex_boxes(), vertex_boxes, tf.packed_face_boxes(), face_boxes, selected, scratch,
+        [&](int) { return Range{face_leaf.face_begin, face_leaf.face_end}; }, exclude_none, [&](int i, int p) {
+          if (wanted(vertex_in_a, i, p)) {
+            out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
+          }
+        });
   };
   vertices_against_faces(a, la, b, lb, box_b);
   vertices_against_faces(b, lb, a, la, box_a);
@@ -162,18 +184,11 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     }
     selected = kept;
   }
-  stats.primitive_tests += (ea.end - ea.begin) + selected * (eb.end - eb.begin);
-  for (int k = 0; k < selected; ++k) {
-    const int i = scratch.selected[k];
-    const FlatBox& box = edge_boxes_a[i];
-    const PackedBox q = ta.packed_edge_boxes().at(i);
-    const int hits = collect_packed(
-        eb.begin, eb.end, scratch.hits, [&](int j) { return lane_bits(tb.packed_edge_boxes().overlap_lanes(j, q)); },
-        [&](int j) { return box.overlaps(edge_boxes_b[j]); });
-    for (int h = 0; h < hits; ++h) {
-      out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[scratch.hits[h]]});
-    }
-  }
+  stats.primitive_tests += (ea.end - ea.begin);
+  stats.primitive_tests += pair_selected(
+      ta.packed_edge_boxes(), edge_boxes_a, tb.packed_edge_boxes(), edge_boxes_b, selected, scratch,
+      [&](int) { return eb; }, exclude_none,
+      [&](int i, int j) { out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]}); });
 }
 
 // Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Each primitive is
@@ -194,26 +209,21 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
                                     const PackedBox& face_leaf_box) {
     const Range vr = vertex_range(t, vertex_leaf);
     const int selected = select_packed(t.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
-    stats.primitive_tests += (vr.end - vr.begin) + selected * (face_leaf.face_end - face_leaf.face_begin);
-    for (int k = 0; k < selected; ++k) {
-      const int i = scratch.selected[k];
-      const int v = t.owned_vertices()[i];
-      const FlatBox& box = vertex_boxes[i];
-      const PackedBox q = t.packed_vertex_boxes().at(i);
-      const int hits = collect_packed(
-          face_leaf.face_begin, face_leaf.face_end, scratch.hits,
-          [&](int p) {
-            return lane_bits(t.packed_face_boxes().overlap_lanes(p, q) & ~t.packed_faces().face_uses_lanes(p, v));
-          },
-          [&](int p) { return box.overlaps(face_boxes[p]); });
-      for (int h = 0; h < hits; ++h) {
-        const int p = scratch.hits[h];
-        const int* f = faces + 3 * p;
-        if (moved == nullptr || moved[v] || moved[f[0]] || moved[f[1]] || moved[f[2]]) {
-          out.vertex_face.push_back({body.body, v, body.body, t.face_order()[p]});
-        }
-      }
-    }
+    stats.primitive_tests += (vr.end - vr.begin);
+    stats.primitive_tests += pair_selected(
+        t.packed_vertex_boxes(), vertex_boxes, t.packed_face_boxes(), face_boxes, selected, scratch,
+        [&](int) { return Range{face_leaf.face_begin, face_leaf.face_end}; },
+        [&](int i) {
+          const int v = t.owned_vertices()[i];
+          return [&ids = t.packed_faces(), v](int p) { return ids.face_uses_lanes(p, v); };
+        },
+        [&](int i, int p) {
+          const int v = t.owned_vertices()[i];
+          const int* f = faces + 3 * p;
+          if (moved == nullptr || moved[v] || moved[f[0]] || moved[f[1]] || moved[f[2]]) {
+            out.vertex_face.push_back({body.body, v, body.body, t.face_order()[p]});
+          }
+        });
   };
   const PackedBox box_a = packed_leaf_box(t, na), box_b = packed_leaf_box(t, nb);
   vertices_against_faces(la, lb, box_b);
@@ -221,30 +231,22 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
   const int selected = select_packed(t.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
   stats.primitive_tests += ea.end - ea.begin;
-  for (int k = 0; k < selected; ++k) {
-    const int i = scratch.selected[k];
-    const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
-    const FlatBox& box = edge_boxes[i];
-    const int first = same ? i + 1 : eb.begin;
-    stats.primitive_tests += eb.end - first;
-    const PackedBox q = t.packed_edge_boxes().at(i);
-    const int hits = collect_packed(
-        first, eb.end, scratch.hits,
-        [&](int j) {
-          const PackedVertexIds& ids = t.packed_edges();
-          return lane_bits(t.packed_edge_boxes().overlap_lanes(j, q) &
-                           ~(ids.edge_uses_lanes(j, a0) | ids.edge_uses_lanes(j, a1)));
-        },
-        [&](int j) { return box.overlaps(edge_boxes[j]); });
-    for (int h = 0; h < hits; ++h) {
-      const int j = scratch.hits[h];
-      const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-      if (moved == nullptr || moved[a0] || moved[a1] || moved[b0] || moved[b1]) {
-        const int e = t.owned_edges()[i], g = t.owned_edges()[j];
-        out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
-      }
-    }
-  }
+  stats.primitive_tests += pair_selected(
+      t.packed_edge_boxes(), edge_boxes, t.packed_edge_boxes(), edge_boxes, selected, scratch,
+      [&](int i) { return Range{same ? i + 1 : eb.begin, eb.end}; },
+      [&](int i) {
+        const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
+        return [&ids = t.packed_edges(), a0, a1](int j) {
+          return ids.edge_uses_lanes(j, a0) | ids.edge_uses_lanes(j, a1);
+        };
+      },
+      [&](int i, int j) {
+        const int a0 = edges[2 * i], a1 = edges[2 * i + 1], b0 = edges[2 * j], b1 = edges[2 * j + 1];
+        if (moved == nullptr || moved[a0] || moved[a1] || moved[b0] || moved[b1]) {
+          const int e = t.owned_edges()[i], g = t.owned_edges()[j];
+          out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
+        }
+      });
 }
 
 }  // namespace clothcd::broadphase::detail
