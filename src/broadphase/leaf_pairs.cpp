@@ -38,6 +38,41 @@ PackedBox packed_leaf_box(const Bvh& bvh, int node) {
   return pack_box(leaf_box(bvh, node));
 }
 
+// The four-lane tests (the vector extension: SSE on x86-64, NEON on ARM), as bits (bit k for position j + k), and the
+// masking of lanes past the end of a range.
+struct FourLanes {
+  static constexpr int kWidth = 4;
+  static unsigned overlap(const PackedBoxes& boxes, int j, const PackedBox& q) {
+    return lane_bits(boxes.overlap_lanes(j, q));
+  }
+  static unsigned edge_uses(const PackedVertexIds& ids, int j, int v, int w) {
+    return lane_bits(ids.edge_uses_lanes(j, v, w));
+  }
+  static unsigned face_uses(const PackedVertexIds& ids, int j, int v) { return lane_bits(ids.face_uses_lanes(j, v)); }
+  // `bits` without the lanes at or beyond `end` (a select, not a branch: the last group of a range is often short).
+  static unsigned below(unsigned bits, int j, int end) {
+    const int lanes = end - j < kWidth ? end - j : kWidth;
+    return bits & ((1u << lanes) - 1u);
+  }
+};
+
+#if defined(CLOTHCD_WIDE_LANES)
+// The eight-lane tests (AVX2, BMI2), as bits.
+struct EightLanes {
+  static constexpr int kWidth = 8;
+  CLOTHCD_AVX2 static unsigned overlap(const PackedBoxes& boxes, int j, const PackedBox& q) {
+    return boxes.overlap_bits8(j, q);
+  }
+  CLOTHCD_AVX2 static unsigned edge_uses(const PackedVertexIds& ids, int j, int v, int w) {
+    return ids.edge_uses_bits8(j, v, w);
+  }
+  CLOTHCD_AVX2 static unsigned face_uses(const PackedVertexIds& ids, int j, int v) { return ids.face_uses_bits8(j, v); }
+  CLOTHCD_AVX2 static unsigned below(unsigned bits, int j, int end) {
+    return _bzhi_u32(bits, static_cast<unsigned>(end - j));  // end - j >= 8 keeps all eight
+  }
+};
+#endif
+
 // For each 4-bit lane mask: the passing lanes in order (padded with lane 0) and how many there are.
 struct LaneTable {
   std::array<std::array<int, 4>, 16> lanes{};
@@ -56,40 +91,44 @@ constexpr LaneTable make_lane_table() {
 
 constexpr LaneTable kLaneTable = make_lane_table();
 
-// Writes the positions j in [begin, end) whose bit is set in `mask4(j)` (bit k for position j + k, evaluated four
-// positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent branch: the group's
-// bits index a table of the passing lanes, all four slots are written, and the count advances by the number set.
-template <class Mask4>
-int select_lanes(int begin, int end, std::vector<int>& out, const Mask4& mask4) {
-  if (out.size() < static_cast<std::size_t>(end - begin + 4)) out.resize(static_cast<std::size_t>(end - begin + 4));
+// Writes the positions j in [begin, end) whose bit is set in `bits(j)` (bit k for position j + k, evaluated
+// Lanes::kWidth positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent
+// branch: each four bits of a group index a table of the passing lanes, all four slots are written, and the count
+// advances by the number set.
+template <class Lanes, class Bits>
+int select_lanes(int begin, int end, std::vector<int>& out, const Bits& bits) {
+  const auto needed = static_cast<std::size_t>(end - begin + Lanes::kWidth);
+  if (out.size() < needed) out.resize(needed);
   int n = 0;
-  for (int j = begin; j < end; j += 4) {
-    const int lanes = end - j < 4 ? end - j : 4;
-    const unsigned mask = mask4(j) & ((1u << lanes) - 1u);
-    const std::array<int, 4>& passing = kLaneTable.lanes[mask];
-    for (int k = 0; k < 4; ++k) out[n + k] = j + passing[k];
-    n += kLaneTable.count[mask];
+  for (int j = begin; j < end; j += Lanes::kWidth) {
+    const unsigned mask = Lanes::below(bits(j), j, end);
+    for (int base = 0; base < Lanes::kWidth; base += 4) {
+      const unsigned nibble = (mask >> base) & 15u;
+      const std::array<int, 4>& passing = kLaneTable.lanes[nibble];
+      for (int k = 0; k < 4; ++k) out[n + k] = j + base + passing[k];
+      n += kLaneTable.count[nibble];
+    }
   }
   return n;
 }
 
 // The positions j in [begin, end) whose packed box may overlap `q` (see select_lanes): every position whose
 // double-precision box overlaps the box `q` was made from, and maybe a few more.
+template <class Lanes>
 int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox& q, std::vector<int>& out) {
-  return select_lanes(begin, end, out, [&](int j) { return lane_bits(boxes.overlap_lanes(j, q)); });
+  return select_lanes<Lanes>(begin, end, out, [&](int j) { return Lanes::overlap(boxes, j, q); });
 }
 
 // Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
-// `mask4(j)`, four positions at a time on packed data (bit k for position j + k; it may pass pairs that `confirm`
-// rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes. (Here most groups pass
+// `bits(j)`, Lanes::kWidth positions at a time on packed data (bit k for position j + k; it may pass pairs that
+// `confirm` rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes. (Here most groups pass
 // nothing, so a loop over the set bits costs less than select_lanes' table writes.)
-template <class Mask4, class Confirm>
-int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4, const Confirm& confirm) {
+template <class Lanes, class Bits, class Confirm>
+int collect_packed(int begin, int end, std::vector<int>& out, const Bits& bits, const Confirm& confirm) {
   if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
   int n = 0;
-  for (int j = begin; j < end; j += 4) {
-    const int lanes = end - j < 4 ? end - j : 4;  // a select, not a branch: the last group of a range is often short
-    unsigned mask = mask4(j) & ((1u << lanes) - 1u);
+  for (int j = begin; j < end; j += Lanes::kWidth) {
+    unsigned mask = Lanes::below(bits(j), j, end);
     while (mask != 0) {
       const int k = j + __builtin_ctz(mask);
       mask &= mask - 1u;
@@ -101,10 +140,10 @@ int collect_packed(int begin, int end, std::vector<int>& out, const Mask4& mask4
 }
 
 // Pairs each selected primitive i of a first set (scratch.selected[0..selected), positions in its tree-ordered arrays)
-// with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes four at a time,
-// minus the lanes that excluded_for(i)(j) sets (pairs that must not be produced), then the double-precision boxes.
-// Calls emit(i, j) for each pair found and returns how many primitive pairs it looked at.
-template <class RangeOf, class ExcludedFor, class Emit>
+// with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes Lanes::kWidth at a
+// time, minus the lanes whose bits excluded_for(i)(j) sets (pairs that must not be produced), then the
+// double-precision boxes. Calls emit(i, j) for each pair found and returns how many primitive pairs it looked at.
+template <class Lanes, class RangeOf, class ExcludedFor, class Emit>
 long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, const PackedBoxes& second_packed,
                    const FlatBox* second_boxes, int selected, LeafScratch& scratch, const RangeOf& range_of,
                    const ExcludedFor& excluded_for, const Emit& emit) {
@@ -116,9 +155,9 @@ long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, 
     const Range range = range_of(i);
     const auto excluded = excluded_for(i);
     looked_at += range.end - range.begin;
-    const int hits = collect_packed(
+    const int hits = collect_packed<Lanes>(
         range.begin, range.end, scratch.hits,
-        [&](int j) { return lane_bits(second_packed.overlap_lanes(j, q) & ~excluded(j)); },
+        [&](int j) { return Lanes::overlap(second_packed, j, q) & ~excluded(j); },
         [&](int j) { return box.overlaps(second_boxes[j]); });
     for (int h = 0; h < hits; ++h) emit(i, scratch.hits[h]);
   }
@@ -127,15 +166,14 @@ long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, 
 
 // No pair excluded (primitives of different bodies never share a vertex).
 auto exclude_none(int) {
-  return [](int) { return LaneMask{}; };
+  return [](int) { return 0u; };
 }
 
-}  // namespace
-
-// Primitive tests of two leaves of different bodies. Boxes are read in tree order (contiguous per leaf); each
-// primitive is first tested against the other leaf's box.
+// Primitive tests of two leaves of different bodies, Lanes::kWidth at a time. Boxes are read in tree order
+// (contiguous per leaf); each primitive is first tested against the other leaf's box.
 // With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
-void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
+template <class Lanes>
+void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
                        CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
@@ -158,9 +196,9 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     const FlatBox* vertex_boxes = tv.ordered_vertex_boxes().data();
     const FlatBox* face_boxes = tf.ordered_face_boxes().data();
     const Range vr = vertex_range(tv, vertex_leaf);
-    const int selected = select_packed(tv.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
+    const int selected = select_packed<Lanes>(tv.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
     stats.primitive_tests += (vr.end - vr.begin);
-    stats.primitive_tests += pair_selected(
+    stats.primitive_tests += pair_selected<Lanes>(
         tv.packed_vertex_boxes(), vertex_boxes, tf.packed_face_boxes(), face_boxes, selected, scratch,
         [&](int) { return Range{face_leaf.face_begin, face_leaf.face_end}; }, exclude_none, [&](int i, int p) {
           if (wanted(vertex_in_a, i, p)) {
@@ -174,7 +212,7 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
   const int* edges_a = ta.ordered_edges().data();
   const FlatBox* edge_boxes_a = ta.ordered_edge_boxes().data();
   const FlatBox* edge_boxes_b = tb.ordered_edge_boxes().data();
-  int selected = select_packed(ta.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
+  int selected = select_packed<Lanes>(ta.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
   if (moved != nullptr) {  // keep the edges with a moved vertex
     int kept = 0;
     for (int k = 0; k < selected; ++k) {
@@ -185,16 +223,17 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
     selected = kept;
   }
   stats.primitive_tests += (ea.end - ea.begin);
-  stats.primitive_tests += pair_selected(
+  stats.primitive_tests += pair_selected<Lanes>(
       ta.packed_edge_boxes(), edge_boxes_a, tb.packed_edge_boxes(), edge_boxes_b, selected, scratch,
       [&](int) { return eb; }, exclude_none,
       [&](int i, int j) { out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]}); });
 }
 
-// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself. Each primitive is
-// first tested against the other leaf's box; a pair passes when the boxes overlap and no vertex is shared. With
-// `moved` (flags per vertex), only pairs with a moved vertex are produced.
-void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
+// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself, Lanes::kWidth at a
+// time. Each primitive is first tested against the other leaf's box; a pair passes when the boxes overlap and no
+// vertex is shared. With `moved` (flags per vertex), only pairs with a moved vertex are produced.
+template <class Lanes>
+void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
                       TraversalStats& stats, LeafScratch& scratch) {
   const Bvh& t = *body.bvh;
   const BvhNode& la = t.nodes()[na];
@@ -208,14 +247,14 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf,
                                     const PackedBox& face_leaf_box) {
     const Range vr = vertex_range(t, vertex_leaf);
-    const int selected = select_packed(t.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
+    const int selected = select_packed<Lanes>(t.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
     stats.primitive_tests += (vr.end - vr.begin);
-    stats.primitive_tests += pair_selected(
+    stats.primitive_tests += pair_selected<Lanes>(
         t.packed_vertex_boxes(), vertex_boxes, t.packed_face_boxes(), face_boxes, selected, scratch,
         [&](int) { return Range{face_leaf.face_begin, face_leaf.face_end}; },
         [&](int i) {
           const int v = t.owned_vertices()[i];
-          return [&ids = t.packed_faces(), v](int p) { return ids.face_uses_lanes(p, v); };
+          return [&ids = t.packed_faces(), v](int p) { return Lanes::face_uses(ids, p, v); };
         },
         [&](int i, int p) {
           const int v = t.owned_vertices()[i];
@@ -229,15 +268,15 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   vertices_against_faces(la, lb, box_b);
   if (!same) vertices_against_faces(lb, la, box_a);
   const Range ea = edge_range(t, la), eb = edge_range(t, lb);
-  const int selected = select_packed(t.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
+  const int selected = select_packed<Lanes>(t.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
   stats.primitive_tests += ea.end - ea.begin;
-  stats.primitive_tests += pair_selected(
+  stats.primitive_tests += pair_selected<Lanes>(
       t.packed_edge_boxes(), edge_boxes, t.packed_edge_boxes(), edge_boxes, selected, scratch,
       [&](int i) { return Range{same ? i + 1 : eb.begin, eb.end}; },
       [&](int i) {
         const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
         return [&ids = t.packed_edges(), a0, a1](int j) {
-          return ids.edge_uses_lanes(j, a0) | ids.edge_uses_lanes(j, a1);
+          return Lanes::edge_uses(ids, j, a0, a1);
         };
       },
       [&](int i, int j) {
@@ -247,6 +286,40 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
           out.edge_edge.push_back({body.body, e < g ? e : g, body.body, e < g ? g : e});
         }
       });
+}
+
+#if defined(CLOTHCD_WIDE_LANES)
+// The eight-lane instantiations, compiled for AVX2 with every call inlined into them (so that no function compiled
+// for the default target passes AVX2 vectors, and no AVX2 code leaks into shared inline functions).
+__attribute__((target("avx2,bmi2"), flatten)) void between_wide(const BodyView& a, const BodyView& b, int na, int nb,
+                                                           const std::uint8_t* moved, CandidateSet& out,
+                                                           TraversalStats& stats, LeafScratch& scratch) {
+  between_lanes<EightLanes>(a, b, na, nb, moved, out, stats, scratch);
+}
+
+__attribute__((target("avx2,bmi2"), flatten)) void within_wide(const BodyView& body, int na, int nb,
+                                                          const std::uint8_t* moved, CandidateSet& out,
+                                                          TraversalStats& stats, LeafScratch& scratch) {
+  within_lanes<EightLanes>(body, na, nb, moved, out, stats, scratch);
+}
+#endif
+
+}  // namespace
+
+void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
+                       CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
+#if defined(CLOTHCD_WIDE_LANES)
+  if (scratch.wide_lanes) return between_wide(a, b, na, nb, moved, out, stats, scratch);
+#endif
+  between_lanes<FourLanes>(a, b, na, nb, moved, out, stats, scratch);
+}
+
+void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
+                      TraversalStats& stats, LeafScratch& scratch) {
+#if defined(CLOTHCD_WIDE_LANES)
+  if (scratch.wide_lanes) return within_wide(body, na, nb, moved, out, stats, scratch);
+#endif
+  within_lanes<FourLanes>(body, na, nb, moved, out, stats, scratch);
 }
 
 }  // namespace clothcd::broadphase::detail

@@ -1,9 +1,9 @@
 #pragma once
 // The primitive tests of one pair of overlapping leaves (internal to the broad phase): vertices against faces and
 // edges against edges by their swept boxes, producing candidate pairs. Each primitive is first pre-selected against
-// the other leaf's box, then tested against the other leaf's primitives four at a time on packed single-precision
-// boxes (and, within one body, packed vertex indices to skip pairs that share a vertex); the few passes are confirmed
-// on the double-precision boxes, so the output is exactly that of the box tests.
+// the other leaf's box, then tested against the other leaf's primitives four (or, with AVX2, eight) at a time on
+// packed single-precision boxes (and, within one body, packed vertex indices to skip pairs that share a vertex); the
+// few passes are confirmed on the double-precision boxes, so the output is exactly that of the box tests.
 
 #include <cstdint>
 #include <vector>
@@ -15,6 +15,7 @@ namespace clothcd::broadphase::detail {
 
 /// Lists of one search task, reused from leaf pair to leaf pair.
 struct LeafScratch {
+  bool wide_lanes = false;    ///< Test eight primitives at a time (only where wide_lanes_supported())
   std::vector<int> selected;  ///< Primitives of one leaf whose box overlaps the other leaf's box
   std::vector<int> hits;      ///< Primitives of the other leaf that pass every test against one selected primitive
 };

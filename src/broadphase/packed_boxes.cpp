@@ -30,6 +30,15 @@ inline float round_up(double x) {
 
 }  // namespace
 
+bool wide_lanes_supported() {
+#if defined(CLOTHCD_WIDE_LANES)
+  static const bool supported = __builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("bmi2") != 0;
+  return supported;
+#else
+  return false;
+#endif
+}
+
 PackedBox pack_box(const FlatBox& box) {
   PackedBox p;
   for (int k = 0; k < 3; ++k) {
@@ -41,7 +50,7 @@ PackedBox pack_box(const FlatBox& box) {
 
 void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
   size_ = static_cast<int>(boxes.size());
-  stride_ = size_ + 3;
+  stride_ = size_ + kPackedPadding;
   rows_.resize(6 * static_cast<std::size_t>(stride_));
   float* r = rows_.data();
   for (int j = 0; j < size_; ++j) {
@@ -61,7 +70,7 @@ void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
 
 void PackedVertexIds::assign(const std::vector<int>& ids, int per_primitive) {
   const int count = static_cast<int>(ids.size()) / per_primitive;
-  stride_ = count + 3;
+  stride_ = count + kPackedPadding;
   rows_.assign(static_cast<std::size_t>(per_primitive) * static_cast<std::size_t>(stride_), -1);
   for (int j = 0; j < count; ++j) {
     for (int row = 0; row < per_primitive; ++row) rows_[row * stride_ + j] = ids[per_primitive * j + row];

@@ -55,6 +55,7 @@ TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[br
                               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const int leaf = GENERATE(1, 3, 16);  // 16: leaves span several four-wide groups of the packed tests
   const bool parallel = GENERATE(false, true);
+  const bool wide = GENERATE(false, true);  // eight-lane leaf tests where the CPU has them, else four
   const int seed = GENERATE(1, 2, 3);
   const bool sphere_obstacle = seed != 2;
   std::mt19937 rng(seed);
@@ -69,7 +70,7 @@ TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[br
   REQUIRE(reference.size() > 0);  // the scene must exercise the search
   CandidateSet found;
   TraversalStats stats;
-  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), {parallel}, found, &stats);
+  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), {parallel, nullptr, wide}, found, &stats);
   CHECK_FALSE(has_duplicates(sorted(found)));
   check_same(sorted(found), sorted(reference));
 
@@ -78,7 +79,7 @@ TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[br
   brute_force_self_candidates(cloth_body.view(0), self_reference);
   REQUIRE(self_reference.size() > 0);
   CandidateSet self_found;
-  find_self_candidates(cloth_body.view(0), {parallel}, self_found);
+  find_self_candidates(cloth_body.view(0), {parallel, nullptr, wide}, self_found);
   CHECK_FALSE(has_duplicates(sorted(self_found)));
   check_same(sorted(self_found), sorted(self_reference));
 }
@@ -135,11 +136,11 @@ TEST_CASE("hierarchies match brute force on random triangle soups", "[broadphase
 
   CandidateSet reference, found;
   brute_force_pair_candidates(body_a.view(0), body_b.view(3), reference);
-  find_pair_candidates(body_a.view(0), body_b.view(3), {seed % 2 == 0}, found);
+  find_pair_candidates(body_a.view(0), body_b.view(3), {seed % 2 == 0, nullptr, seed % 3 != 0}, found);
   check_same(sorted(found), sorted(reference));
   CandidateSet self_reference, self_found;
   brute_force_self_candidates(body_a.view(0), self_reference);
-  find_self_candidates(body_a.view(0), {seed % 2 == 1}, self_found);
+  find_self_candidates(body_a.view(0), {seed % 2 == 1, nullptr, seed % 3 != 1}, self_found);
   check_same(sorted(self_found), sorted(self_reference));
 }
 
@@ -248,6 +249,7 @@ TEST_CASE("searches restricted to moved vertices return exactly the brute-force 
                               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const double moved_share = GENERATE(0.0, 0.05, 0.3, 1.0);
   const bool parallel = GENERATE(false, true);
+  const bool wide = GENERATE(false, true);
   std::mt19937 rng(11);
   const TriangleMesh cloth = draped_cloth(12);
   const TriangleMesh obstacle = make_uv_sphere(1.0, 12, 7);
@@ -256,7 +258,7 @@ TEST_CASE("searches restricted to moved vertices return exactly the brute-force 
   std::bernoulli_distribution pick(moved_share);
   std::vector<std::uint8_t> moved(cloth_body.topology.vertex_count);
   for (auto& m : moved) m = pick(rng) ? 1 : 0;
-  TraversalSettings restricted{parallel, &moved};
+  TraversalSettings restricted{parallel, &moved, wide};
 
   CandidateSet all, found;
   brute_force_self_candidates(cloth_body.view(0), all);

@@ -1,6 +1,6 @@
 // Packed primitive data: the single-precision box copies contain the double boxes they come from at every magnitude
-// (so a four-lane pre-selection never separates overlapping boxes), padding never overlaps, and the vertex-index lanes
-// agree with a scalar comparison.
+// (so a four- or eight-lane pre-selection never separates overlapping boxes), padding never overlaps, and the
+// vertex-index lanes agree with a scalar comparison.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -17,6 +17,31 @@ using clothcd::broadphase::lane_bits;
 using clothcd::broadphase::pack_box;
 using clothcd::broadphase::PackedBoxes;
 using clothcd::broadphase::PackedVertexIds;
+using clothcd::broadphase::wide_lanes_supported;
+
+// The lane widths this machine runs: 4, and 8 where the CPU has AVX2.
+std::vector<int> lane_widths() {
+  if (wide_lanes_supported()) return {4, 8};
+  return {4};
+}
+
+// Bits of box j's group of `width` lanes overlapping `q`.
+unsigned overlap_bits(const PackedBoxes& packed, int width, int j, const clothcd::broadphase::PackedBox& q) {
+#if defined(CLOTHCD_WIDE_LANES)
+  if (width == 8) return packed.overlap_bits8(j, q);
+#endif
+  (void)width;
+  return lane_bits(packed.overlap_lanes(j, q));
+}
+
+// Bits of primitive j's group of `width` lanes using vertex v, or for edges (per = 2) v or w (per = 3: faces).
+unsigned uses_bits(const PackedVertexIds& packed, int per, int width, int j, int v, int w) {
+#if defined(CLOTHCD_WIDE_LANES)
+  if (width == 8) return per == 2 ? packed.edge_uses_bits8(j, v, w) : packed.face_uses_bits8(j, v);
+#endif
+  (void)width;
+  return lane_bits(per == 2 ? packed.edge_uses_lanes(j, v, w) : packed.face_uses_lanes(j, v));
+}
 
 // A double of random sign, mantissa and binary exponent in [min_exp, max_exp].
 double random_double(std::mt19937_64& rng, int min_exp, int max_exp) {
@@ -49,7 +74,7 @@ TEST_CASE("packed boxes contain the double boxes at every magnitude", "[broadpha
   }
 }
 
-TEST_CASE("packed overlap lanes never separate overlapping boxes and ignore padding", "[broadphase][packed]") {
+TEST_CASE("packed overlap lanes (four and eight wide) never separate overlapping boxes and ignore padding", "[broadphase][packed]") {
   std::mt19937_64 rng(43);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<int> count(1, 13);
@@ -66,23 +91,25 @@ TEST_CASE("packed overlap lanes never separate overlapping boxes and ignore padd
     packed.assign(boxes);
     REQUIRE(packed.size() == static_cast<int>(boxes.size()));
     const auto packed_q = pack_box(q);
-    int passes = 0, overlaps = 0;
-    for (int j = 0; j < packed.size(); j += 4) {
-      const unsigned bits = lane_bits(packed.overlap_lanes(j, packed_q));
-      for (int k = 0; k < 4; ++k) {
-        const bool lane = ((bits >> k) & 1u) != 0;
-        if (j + k >= packed.size()) {
-          REQUIRE_FALSE(lane);
-          continue;
+    for (const int width : lane_widths()) {
+      int passes = 0, overlaps = 0;
+      for (int j = 0; j < packed.size(); j += width) {
+        const unsigned bits = overlap_bits(packed, width, j, packed_q);
+        for (int k = 0; k < width; ++k) {
+          const bool lane = ((bits >> k) & 1u) != 0;
+          if (j + k >= packed.size()) {
+            REQUIRE_FALSE(lane);
+            continue;
+          }
+          if (boxes[j + k].overlaps(q)) {
+            REQUIRE(lane);
+            ++overlaps;
+          }
+          passes += lane ? 1 : 0;
         }
-        if (boxes[j + k].overlaps(q)) {
-          REQUIRE(lane);
-          ++overlaps;
-        }
-        passes += lane ? 1 : 0;
       }
+      REQUIRE(passes >= overlaps);
     }
-    REQUIRE(passes >= overlaps);
   }
 }
 
@@ -95,16 +122,18 @@ TEST_CASE("packed vertex-index lanes agree with a scalar comparison", "[broadpha
     PackedVertexIds packed;
     packed.assign(ids, per);
     const int primitives = static_cast<int>(ids.size()) / per;
-    for (int v = 0; v < 10; ++v) {
-      for (int j = 0; j < primitives; ++j) {
-        const unsigned bits =
-            lane_bits(per == 2 ? packed.edge_uses_lanes(j, v) : packed.face_uses_lanes(j, v));
-        for (int k = 0; k < 4; ++k) {
-          bool uses = false;
-          if (j + k < primitives) {
-            for (int r = 0; r < per; ++r) uses = uses || ids[per * (j + k) + r] == v;
+    for (const int width : lane_widths()) {
+      for (int v = 0; v < 10; ++v) {
+        const int w = per == 2 ? (v * 7 + 3) % 10 : v;  // edges: a second vertex, sometimes v itself
+        for (int j = 0; j < primitives; ++j) {
+          const unsigned bits = uses_bits(packed, per, width, j, v, w);
+          for (int k = 0; k < width; ++k) {
+            bool uses = false;
+            if (j + k < primitives) {
+              for (int r = 0; r < per; ++r) uses = uses || ids[per * (j + k) + r] == v || ids[per * (j + k) + r] == w;
+            }
+            REQUIRE((((bits >> k) & 1u) != 0) == uses);
           }
-          REQUIRE((((bits >> k) & 1u) != 0) == uses);
         }
       }
     }

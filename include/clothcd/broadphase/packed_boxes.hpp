@@ -1,20 +1,34 @@
 #pragma once
 /// @file
-/// Primitive data in structure-of-arrays layout for testing one primitive against four at a time: single-precision
-/// copies of swept boxes rounded outwards, and the primitives' vertex indices. The box copies only pre-select: a pair
-/// they pass is confirmed on the double-precision boxes, so results are those of the FlatBox tests exactly.
-/// The four-lane operations use the compiler's vector extension (SSE on x86-64, NEON on ARM).
+/// Primitive data in structure-of-arrays layout for testing one primitive against four or eight at a time:
+/// single-precision copies of swept boxes rounded outwards, and the primitives' vertex indices. The box copies only
+/// pre-select: a pair they pass is confirmed on the double-precision boxes, so results are those of the FlatBox tests
+/// exactly. The four-lane operations use the compiler's vector extension (SSE on x86-64, NEON on ARM); the eight-lane
+/// ones (x86-64 with GCC or Clang) are compiled for AVX2 and may only run where wide_lanes_supported() is true.
 
 #include <cstring>
 #include <vector>
 
 #include "clothcd/broadphase/swept_boxes.hpp"
 
-#if defined(__SSE2__)
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+/// Defined when the eight-lane (AVX2) operations are compiled in.
+#define CLOTHCD_WIDE_LANES 1
+#include <immintrin.h>
+/// Marks a function compiled for AVX2 and BMI2 (call it only where wide_lanes_supported() is true).
+#define CLOTHCD_AVX2 __attribute__((target("avx2,bmi2")))
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 namespace clothcd::broadphase {
+
+/// Whether this CPU runs the eight-lane operations (AVX2 and BMI2 on x86-64); false where they are not compiled in.
+[[nodiscard]] bool wide_lanes_supported();
+
+/// Entries after the last primitive in every packed row (so that eight consecutive entries can be read from any valid
+/// position); padding boxes are empty and padding vertex indices are -1.
+inline constexpr int kPackedPadding = 7;
 
 /// Four 32-bit lanes, each all ones (true) or zero (false): the result of a four-at-a-time test.
 using LaneMask = int __attribute__((vector_size(16)));
@@ -31,7 +45,7 @@ using LaneMask = int __attribute__((vector_size(16)));
 namespace packed_detail {
 /// Four consecutive values from `p` (any alignment) as one vector `Vector`.
 template <class Vector, class Value>
-[[nodiscard]] inline Vector load4(const Value* p) {
+[[nodiscard]] inline Vector load_lanes(const Value* p) {
   static_assert(sizeof(Vector) == 4 * sizeof(Value), "four lanes");
   Vector v;
   std::memcpy(&v, p, sizeof v);
@@ -48,8 +62,8 @@ struct PackedBox {
 /// The outward-rounded single-precision copy of `box` (bounds not NaN; infinite or beyond the float range is fine).
 [[nodiscard]] PackedBox pack_box(const FlatBox& box);
 
-/// Boxes stored as six rows of floats (lo x, y, z, hi x, y, z), each padded by three never-overlapping entries so that
-/// four consecutive boxes can be read from any valid position.
+/// Boxes stored as six rows of floats (lo x, y, z, hi x, y, z), each padded by kPackedPadding never-overlapping
+/// entries.
 class PackedBoxes {
  public:
   /// Replaces the contents with outward-rounded copies of `boxes`.
@@ -74,26 +88,45 @@ class PackedBoxes {
            (load(r + s) <= q.hi[1]) & (q.lo[2] <= load(r + 5 * s)) & (load(r + 2 * s) <= q.hi[2]);
   }
 
+#if defined(CLOTHCD_WIDE_LANES)
+  /// overlap_lanes for boxes j .. j + 7, as bits (bit k for box j + k). AVX2 only.
+  [[nodiscard]] CLOTHCD_AVX2 unsigned overlap_bits8(int j, const PackedBox& q) const {
+    const float* r = rows_.data() + j;
+    const int s = stride_;
+    const auto lanes = (q.lo[0] <= load8(r + 3 * s)) & (load8(r) <= q.hi[0]) & (q.lo[1] <= load8(r + 4 * s)) &
+                       (load8(r + s) <= q.hi[1]) & (q.lo[2] <= load8(r + 5 * s)) & (load8(r + 2 * s) <= q.hi[2]);
+    return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(lanes)));
+  }
+#endif
+
  private:
   using Floats = float __attribute__((vector_size(16)));
-  static Floats load(const float* p) { return packed_detail::load4<Floats>(p); }
+  static Floats load(const float* p) { return packed_detail::load_lanes<Floats>(p); }
+#if defined(CLOTHCD_WIDE_LANES)
+  using Floats8 = float __attribute__((vector_size(32)));
+  CLOTHCD_AVX2 static Floats8 load8(const float* p) {
+    Floats8 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+#endif
 
   std::vector<float> rows_;
   int size_ = 0;
   int stride_ = 0;
 };
 
-/// The vertex indices of edges (2 rows) or faces (3 rows) as rows of ints, each padded by three entries of -1, so
-/// that four consecutive primitives can be compared with a vertex at once.
+/// The vertex indices of edges (2 rows) or faces (3 rows) as rows of ints, each padded by kPackedPadding entries of
+/// -1, so that four or eight consecutive primitives can be compared with a vertex at once.
 class PackedVertexIds {
  public:
   /// Replaces the contents: `ids` holds `per_primitive` (2 or 3) indices (>= 0) per primitive, one after the other.
   void assign(const std::vector<int>& ids, int per_primitive);
 
-  /// Lane k true when edge j + k uses vertex `v` (>= 0); false at or beyond the last edge. Edge rows only.
-  [[nodiscard]] LaneMask edge_uses_lanes(int j, int v) const {
-    const int* r = rows_.data() + j;
-    return (load(r) == v) | (load(r + stride_) == v);
+  /// Lane k true when edge j + k uses vertex `v` or `w` (>= 0); false at or beyond the last edge. Edge rows only.
+  [[nodiscard]] LaneMask edge_uses_lanes(int j, int v, int w) const {
+    const LaneMask first = load(rows_.data() + j), second = load(rows_.data() + j + stride_);
+    return (first == v) | (second == v) | (first == w) | (second == w);
   }
 
   /// Lane k true when face j + k uses vertex `v` (>= 0); false at or beyond the last face. Face rows only.
@@ -102,8 +135,34 @@ class PackedVertexIds {
     return (load(r) == v) | (load(r + stride_) == v) | (load(r + 2 * stride_) == v);
   }
 
+#if defined(CLOTHCD_WIDE_LANES)
+  /// edge_uses_lanes for edges j .. j + 7, as bits (bit k for edge j + k). AVX2 only.
+  [[nodiscard]] CLOTHCD_AVX2 unsigned edge_uses_bits8(int j, int v, int w) const {
+    const Ints8 first = load8(rows_.data() + j), second = load8(rows_.data() + j + stride_);
+    return bits8((first == v) | (second == v) | (first == w) | (second == w));
+  }
+
+  /// face_uses_lanes for faces j .. j + 7, as bits (bit k for face j + k). AVX2 only.
+  [[nodiscard]] CLOTHCD_AVX2 unsigned face_uses_bits8(int j, int v) const {
+    const int* r = rows_.data() + j;
+    return bits8((load8(r) == v) | (load8(r + stride_) == v) | (load8(r + 2 * stride_) == v));
+  }
+#endif
+
  private:
-  static LaneMask load(const int* p) { return packed_detail::load4<LaneMask>(p); }
+#if defined(CLOTHCD_WIDE_LANES)
+  using Ints8 = int __attribute__((vector_size(32)));
+  CLOTHCD_AVX2 static Ints8 load8(const int* p) {
+    Ints8 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  CLOTHCD_AVX2 static unsigned bits8(Ints8 lanes) {
+    return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(lanes)));
+  }
+#endif
+
+  static LaneMask load(const int* p) { return packed_detail::load_lanes<LaneMask>(p); }
 
   std::vector<int> rows_;
   int stride_ = 0;
