@@ -34,10 +34,10 @@ struct DetectorSettings {
   /// Network model for CullingMode::Network: a model directory (network.xml + card.json) or its network.xml; empty:
   /// the committed default model, see default_network_model_dir().
   std::string model_path;
-  /// Triangles per hierarchy leaf (>= 1; median splits make leaves of between half of it and it). 16 since the leaf
-  /// tests take four primitives at a time (cloth C on the human, callgrind over 31 frames of whole detection:
-  /// 1.56G instructions and 7.7M mispredicted branches against 1.65G and 9.1M with 8; 40 costs more again).
-  int max_leaf_faces = 16;
+  /// Triangles per hierarchy leaf (>= 1; median splits make leaves of between half of it and it). 32 since the leaf
+  /// tests take eight primitives at a time (cloth C on the human, cachegrind over 30 frames of whole detection:
+  /// 1.28G instructions and 4.2M mispredicted branches against 1.32G and 4.8M with 16, 1.29G and 4.7M with 40).
+  int max_leaf_faces = 32;
   double rebuild_ratio = 2.0;   ///< Hierarchy rebuild rule, see broadphase::BvhSettings::rebuild_ratio.
   bool parallel = true;         ///< Use TBB threads (results are identical and in the same order either way).
   /// When detect() is called again with the same start positions (a simulation re-checking its step after collision
