@@ -16,6 +16,7 @@
 #include "clothcd/geometry/convex_hull.hpp"
 #include "clothcd/geometry/simplify.hpp"
 #include "min_area_rectangle.hpp"
+#include "slab_extremes.hpp"
 
 namespace clothcd::geometry {
 namespace {
@@ -121,47 +122,23 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
                               const AdaptiveHints* hints = nullptr) {
   const Eigen::Index n = v.rows();
   if (n == 0) return Eigen::Matrix3d::Identity();  // e.g. a model simplified to nothing: the extents still bound it
-  const int slabs = settings.slabs;
   auto& keep = scratch.keep;
   keep.resize(static_cast<size_t>(n), 0);
   const Eigen::Vector3d centre = hints ? hints->centre : area_weighted_centre(v, faces);
   // Eqs. 15-16: s slabs of width k = (Q_max - Q_min) / s per axis; each slab keeps its vertex farthest from the centre
   // and its extremes in the two other coordinates (the slab's silhouette).
-  const Eigen::Vector3d lo = v.colwise().minCoeff().transpose(), hi = v.colwise().maxCoeff().transpose();
-  constexpr int kPerSlab = 5;
-  constexpr int kMaxSlabs = 256;
-  const int s = std::clamp(slabs, 1, kMaxSlabs);
-  std::array<int, 3 * kMaxSlabs * kPerSlab> best;
-  std::array<double, 3 * kMaxSlabs * kPerSlab> score;
-  std::fill_n(best.begin(), 3 * s * kPerSlab, -1);
-  std::fill_n(score.begin(), 3 * s * kPerSlab, -std::numeric_limits<double>::infinity());
-  Eigen::Vector3d inv_width;
-  for (int a = 0; a < 3; ++a) inv_width[a] = hi[a] > lo[a] ? s / (hi[a] - lo[a]) : 0.0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d p = v.row(i).transpose();
-    const double far = (p - centre).squaredNorm();
-    for (int a = 0; a < 3; ++a) {
-      const int slab = std::min(s - 1, static_cast<int>((p[a] - lo[a]) * inv_width[a]));
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      const double values[kPerSlab] = {far, p[b], -p[b], p[c], -p[c]};
-      const int base = (a * s + slab) * kPerSlab;
-      for (int k = 0; k < kPerSlab; ++k) {
-        if (values[k] > score[size_t(base + k)]) {
-          score[size_t(base + k)] = values[k];
-          best[size_t(base + k)] = int(i);
-        }
-      }
-    }
-  }
+  const int s = std::clamp(settings.slabs, 1, detail::kMaxSlabs);
+  std::array<int, 3 * detail::kMaxSlabs * detail::kSlabValues> best;
+  detail::slab_extremes(v, centre, s, best.data());
   // S': the distinct slab winners, in order of first appearance (a repeat is written and then overwritten).
   // Raw pointers here and below: the stores through char pointers would otherwise make the compiler reload every
   // vector's data pointer after each store.
   auto& kept_index = scratch.kept_index;
-  kept_index.resize(size_t(3 * s * kPerSlab));
+  kept_index.resize(size_t(3 * s * detail::kSlabValues));
   char* const is_kept = keep.data();
   int* const kept_rows = kept_index.data();
   size_t kept_count = 0;
-  for (int k = 0; k < 3 * s * kPerSlab; ++k) {
+  for (int k = 0; k < 3 * s * detail::kSlabValues; ++k) {
     const int i = best[size_t(k)];
     if (i < 0) continue;  // an empty slab
     kept_rows[kept_count] = i;

@@ -1,0 +1,149 @@
+// Slab extremes of the fast adaptive OBB (Jin et al. eqs. 15-16). Which row wins a slab is data-dependent, so the
+// reference's branches are often mispredicted; the fast version (x86-64 with AVX2, chosen at run time) updates each
+// slab's running bests with comparison masks instead, four values at a time.
+#include "slab_extremes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define CLOTHCD_SLAB_AVX2 1
+#include <immintrin.h>
+#endif
+
+namespace clothcd::geometry::detail {
+namespace {
+
+// The slab count and, per axis, the smallest coordinate and slabs / width (0 when the axis is flat: one slab).
+struct Slabs {
+  int count;
+  Eigen::Vector3d lo, inv_width;
+
+  Slabs(const Vertices& points, int slabs) : count(std::clamp(slabs, 1, kMaxSlabs)) {
+    // A plain loop over the rows: Eigen's column-wise reductions of a row-major matrix are several times slower.
+    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0};
+    if (points.rows() > 0) std::copy_n(points.data(), 3, low), std::copy_n(points.data(), 3, high);
+    for (Eigen::Index i = 1; i < points.rows(); ++i) {
+      const double* p = points.data() + 3 * i;
+      for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
+    }
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = low[a];
+      inv_width[a] = high[a] > low[a] ? count / (high[a] - low[a]) : 0.0;
+    }
+  }
+
+  [[nodiscard]] int of(const double* p, int a) const {
+    return std::min(count - 1, static_cast<int>((p[a] - lo[a]) * inv_width[a]));
+  }
+};
+
+double squared_distance(const double* p, const Eigen::Vector3d& centre) {
+  return (Eigen::Vector3d(p[0], p[1], p[2]) - centre).squaredNorm();
+}
+
+#if defined(CLOTHCD_SLAB_AVX2)
+
+// Per slab: the running best of {p[b], p[c], -p[b], -p[c]} and of the distance from the centre (lane 1 unused, never
+// beaten), with their rows as doubles (exact) so that one comparison mask selects value and row together.
+struct alignas(32) SlabBest {
+  double extreme[4];
+  double extreme_row[4];
+  double far[2];
+  double far_row[2];
+};
+
+// Updates `slab` (of axis a) by the point p (row `row`, distance `far` from the centre).
+__attribute__((target("avx2"), always_inline)) inline void take_better(SlabBest& slab, const double* p, int a,
+                                                                       __m128d far, __m256d row) {
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  // A strictly greater value replaces the running best and its row (so ties keep the first row); max(value, old) is
+  // value exactly where value > old.
+  const __m128d side = _mm_set_pd(p[c], p[b]);
+  const __m256d extreme = _mm256_insertf128_pd(_mm256_castpd128_pd256(side), _mm_sub_pd(_mm_setzero_pd(), side), 1);
+  const __m256d old = _mm256_load_pd(slab.extreme);
+  const __m256d take = _mm256_cmp_pd(extreme, old, _CMP_GT_OQ);
+  _mm256_store_pd(slab.extreme, _mm256_max_pd(extreme, old));
+  _mm256_store_pd(slab.extreme_row, _mm256_blendv_pd(_mm256_load_pd(slab.extreme_row), row, take));
+  const __m128d old_far = _mm_load_pd(slab.far);
+  const __m128d take_far = _mm_cmpgt_pd(far, old_far);
+  _mm_store_pd(slab.far, _mm_max_pd(far, old_far));
+  _mm_store_pd(slab.far_row, _mm_blendv_pd(_mm_load_pd(slab.far_row), _mm256_castpd256_pd128(row), take_far));
+}
+
+// The running bests of every slab, updated point by point. The slab indices of a block of points are computed before
+// the block's updates, so the updates' addresses are known early (else each load of a running best may wait for, or
+// be replayed after, the stores of the point before, which often hit the same slab).
+__attribute__((target("avx2"))) void slab_extremes_avx2(const Vertices& points, const Eigen::Vector3d& centre,
+                                                        const Slabs& cut, int* rows) {
+  const int slab_count = 3 * cut.count;
+  std::array<SlabBest, 3 * kMaxSlabs> best;
+  const double never = -std::numeric_limits<double>::infinity();
+  std::fill_n(best.begin(), slab_count, SlabBest{{never, never, never, never}, {-1, -1, -1, -1}, {never, never},
+                                                 {-1, -1}});
+  constexpr int kBlock = 64;
+  std::array<int, 3 * kBlock> slab_of;
+  const Eigen::Index n = points.rows();
+  for (Eigen::Index start = 0; start < n; start += kBlock) {
+    const int count = static_cast<int>(std::min<Eigen::Index>(kBlock, n - start));
+    for (int j = 0; j < count; ++j)
+      for (int a = 0; a < 3; ++a) slab_of[size_t(3 * j + a)] = a * cut.count + cut.of(points.data() + 3 * (start + j), a);
+    for (int j = 0; j < count; ++j) {
+      const double* p = points.data() + 3 * (start + j);
+      const __m128d far = _mm_set_pd(never, squared_distance(p, centre));
+      const __m256d row = _mm256_set1_pd(double(start + j));
+      for (int a = 0; a < 3; ++a) take_better(best[size_t(slab_of[size_t(3 * j + a)])], p, a, far, row);
+    }
+  }
+  for (int j = 0; j < slab_count; ++j) {
+    const SlabBest& slab = best[size_t(j)];
+    int* out = rows + j * kSlabValues;  // values {far, p[b], -p[b], p[c], -p[c]}
+    out[0] = static_cast<int>(slab.far_row[0]);
+    out[1] = static_cast<int>(slab.extreme_row[0]);
+    out[2] = static_cast<int>(slab.extreme_row[2]);
+    out[3] = static_cast<int>(slab.extreme_row[1]);
+    out[4] = static_cast<int>(slab.extreme_row[3]);
+  }
+}
+
+bool avx2_supported() {
+  static const bool supported = __builtin_cpu_supports("avx2") != 0;
+  return supported;
+}
+
+#endif
+
+}  // namespace
+
+void slab_extremes_reference(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
+  const Slabs cut(points, slabs);
+  const int entries = 3 * cut.count * kSlabValues;
+  std::array<double, 3 * kMaxSlabs * kSlabValues> score;
+  std::fill_n(score.begin(), entries, -std::numeric_limits<double>::infinity());
+  std::fill_n(rows, entries, -1);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const double* p = points.data() + 3 * i;
+    const double far = squared_distance(p, centre);
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      const double values[kSlabValues] = {far, p[b], -p[b], p[c], -p[c]};
+      const int base = (a * cut.count + cut.of(p, a)) * kSlabValues;
+      for (int k = 0; k < kSlabValues; ++k) {
+        if (values[k] > score[size_t(base + k)]) {
+          score[size_t(base + k)] = values[k];
+          rows[base + k] = int(i);
+        }
+      }
+    }
+  }
+}
+
+void slab_extremes(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
+#if defined(CLOTHCD_SLAB_AVX2)
+  if (avx2_supported()) return slab_extremes_avx2(points, centre, Slabs(points, slabs), rows);
+#endif
+  slab_extremes_reference(points, centre, slabs, rows);
+}
+
+}  // namespace clothcd::geometry::detail
