@@ -673,7 +673,9 @@ void pin_rational_root(Candidate& c, const System& system) {
 // first), so that this shortcut, or an exclusion, usually comes from the first one.
 class Predicate {
  public:
-  Predicate(System& system, Candidate& candidate) : system_(system), candidate_(candidate) {
+  // only_axis >= 0: the projection dropping that axis maps W's plane one to one at the candidate, so it alone decides.
+  Predicate(System& system, Candidate& candidate, int only_axis = -1)
+      : system_(system), candidate_(candidate), only_axis_(only_axis) {
     for (auto& table : {&cross_, &dot_})
       for (auto& plane : *table)
         for (auto& row : plane) row.fill(kUnknown);
@@ -686,8 +688,10 @@ class Predicate {
     bool result = true, strictly = false;
     const double t = candidate_.rational ? candidate_.num.estimate() / candidate_.den.estimate()
                                          : candidate_.lo.estimate();
-    const std::array<int, 3> axes = system_.axes_by_normal(t);
-    for (int i = 0; i < 3 && result && !strictly; ++i) {
+    const std::array<int, 3> axes =
+        only_axis_ >= 0 ? std::array<int, 3>{only_axis_, only_axis_, only_axis_} : system_.axes_by_normal(t);
+    const int axis_count = only_axis_ >= 0 ? 1 : 3;
+    for (int i = 0; i < axis_count && result && !strictly; ++i) {
       const int k = axes[static_cast<std::size_t>(i)];
       bool inside = false;
       for (int a = 0; a < system_.points() && !inside; ++a)
@@ -734,6 +738,7 @@ class Predicate {
   static constexpr int kUnknown = 2;
   System& system_;
   Candidate& candidate_;
+  int only_axis_ = -1;
   bool failed_ = false;
   int end_ = -1;  // 0 or 1 when the candidate is the step's start or end (signs straight from those positions)
   std::array<std::array<std::array<int, 4>, 4>, 3> cross_{};
@@ -822,22 +827,49 @@ bool add_roots(const Poly& p, std::vector<Candidate>& out) {
   return isolate(p, n, zero, s_0, one, s_1, 0, out);
 }
 
+// With D identically zero, an axis k whose projection maps the plane of W (and the origin) one to one at every time
+// of the step, or -1. W[0], W[1], W[2] span that plane whenever they are not collinear (vertex-face: the face's edge
+// vectors; edge-edge: da and db, and all four points of W then form a parallelogram, so any three are not
+// collinear); the k-th component of its normal is N_k = cross(0, 1) + cross(1, 2) + cross(2, 0) in projection k.
+// When N_k's Bernstein coefficients on [0, 1] all have one strict sign, N_k never vanishes: the projection is one to
+// one on the plane and no projected triangle of W degenerates. Axes are tried by decreasing rounded |N_k| at t = 1/2.
+int fixed_projection_axis(System& system) {
+  const Expansion zero(0.0), one(1.0);
+  for (const int k : system.axes_by_normal(0.5)) {
+    const Poly normal = system.cross(k, 0, 1) + system.cross(k, 1, 2) - system.cross(k, 0, 2);
+    const int n = degree(normal);
+    if (n < 0) continue;
+    const BernsteinSigns signs = bernstein_signs(normal, n, zero, one);
+    bool one_sign = signs.sign[0] != 0;
+    for (std::size_t i = 1; i < static_cast<std::size_t>(signs.count); ++i)
+      one_sign = one_sign && signs.sign[i] == signs.sign[0];
+    if (one_sign) return k;
+  }
+  return -1;
+}
+
 // D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
 // closed and its membership changes only at roots of the sign polynomials, so its earliest point (if any) is 0 or
 // such a root: the predicate is tested at t = 0, t = 1 and every root of every non-zero sign polynomial.
+//
+// When one axis projection maps W's plane one to one for the whole step (fixed_projection_axis), that projection alone
+// decides, its triangles never degenerate, so only its 2D cross products change the answer: their roots are the only
+// candidates besides 0 and 1, and no dot product is needed.
 std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
   const Expansion zero(0.0), one(1.0);
+  const int axis = fixed_projection_axis(system);
   // t = 0 first: its signs come straight from the start positions, and a contact there ends the search.
   Candidate start = point_at(zero);
-  const std::optional<bool> at_start = Predicate(system, start).holds();
+  const std::optional<bool> at_start = Predicate(system, start, axis).holds();
   if (!at_start) return std::nullopt;
   if (*at_start) return exact::ExactAnswer{true, 0.0};
   std::vector<Candidate> candidates{point_at(one)};
   for (int k = 0; k < 3; ++k) {
+    if (axis >= 0 && k != axis) continue;
     for (int a = 0; a < system.points(); ++a) {
       for (int b = a; b < system.points(); ++b) {
         if (b > a && !add_roots(system.cross(k, a, b), candidates)) return std::nullopt;
-        if (!add_roots(system.dot(k, a, b), candidates)) return std::nullopt;
+        if (axis < 0 && !add_roots(system.dot(k, a, b), candidates)) return std::nullopt;
       }
     }
   }
@@ -856,7 +888,7 @@ std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
   for (const std::size_t i : order) {
     Candidate& candidate = candidates[i];
     if (answer.hit && !candidate.rational && (candidate.lo - Expansion(answer.toi)).sign() > 0) continue;
-    const std::optional<bool> inside = Predicate(system, candidate).holds();
+    const std::optional<bool> inside = Predicate(system, candidate, axis).holds();
     if (!inside) return std::nullopt;
     if (*inside) {
       answer.hit = true;

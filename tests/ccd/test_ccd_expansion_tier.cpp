@@ -292,3 +292,35 @@ TEST_CASE("expansion tier decides touching at a time where points align on an ax
   CHECK(tally.hits > tally.queries / 4);
   CHECK(tally.answered > tally.queries * 95 / 100);
 }
+
+TEST_CASE("expansion tier decides coplanar motion in a turning plane", "[ccd][expansion][differential]") {
+  // D identically zero without an axis-aligned plane: one point (the vertex, or the first edge's second endpoint) is a
+  // fixed affine combination of the other three, which move freely on a grid, so the four stay coplanar while their
+  // plane turns; the plane's normal may keep one strict sign on an axis for the whole step (that projection alone
+  // decides) or not (every projection), and the triangle may degenerate in between.
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  std::mt19937 random(kind == PairKind::VertexFace ? 7101u : 7102u);
+  std::uniform_int_distribution<int> step(-3, 3), weight(-2, 6), coin(0, 3);
+  const auto grid = [&] { return Vector3d(step(random), step(random), step(random)); };
+  const int combined = kind == PairKind::VertexFace ? 0 : 1;
+  Tally tally;
+  for (int i = 0; i < 300; ++i) {
+    ccd::CcdQuery q;
+    q.kind = kind;
+    for (int j = 0; j < 4; ++j) {
+      q.start[j] = grid();
+      q.end[j] = coin(random) == 0 ? q.start[j] : grid();
+    }
+    const double a = 0.25 * weight(random), b = 0.25 * weight(random);  // exact dyadic weights, sum of three is 1
+    std::array<int, 3> others{};
+    for (int j = 0, n = 0; j < 4; ++j)
+      if (j != combined) others[static_cast<std::size_t>(n++)] = j;
+    for (auto* points : {&q.start, &q.end}) {
+      auto& p = *points;
+      p[combined] = (1 - a - b) * p[others[0]] + a * p[others[1]] + b * p[others[2]];
+    }
+    check_tier(q, tally);
+  }
+  CHECK(tally.hits > tally.queries / 10);
+  CHECK(tally.answered > tally.queries * 9 / 10);
+}
