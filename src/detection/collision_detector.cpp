@@ -13,6 +13,7 @@
 #include <string>
 
 #include "ccd/after_filter.hpp"
+#include "ccd/projection_block.hpp"
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/broadphase/bvh.hpp"
 #include "clothcd/broadphase/candidates.hpp"
@@ -98,6 +99,7 @@ struct CollisionDetector::Impl {
   detail::PairBatch spare;   // storage for the next batch when the last one is partly reused
   broadphase::CandidateSet fresh;  // candidates found by this call's search
   std::vector<std::size_t> todo;   // positions in `batch` of the pairs this call must test
+  std::vector<std::size_t> blocks;  // positions in `todo` where the blocks of the block filter start
   std::vector<detail::KeyedIndex> vertex_face_hits;  // the hits of one kind: canonical sort key and batch position
   std::vector<detail::KeyedIndex> edge_edge_hits;
   std::vector<detail::KeyedIndex> sort_scratch;
@@ -179,8 +181,8 @@ struct CollisionDetector::Impl {
     for (std::size_t i = 0; i < batch.size(); ++i) todo.push_back(i);
   }
 
-  // Fills `q` with the CCD query and the batch's vertex references with those of the pair at position i.
-  void gather(const Vertices& start, const Vertices& end, std::size_t i, ccd::CcdQuery& q) {
+  // Sets and returns the batch's vertex references of the pair at position i.
+  const std::array<VertexRef, 4>& fill_refs(std::size_t i) {
     const broadphase::CandidateSet& candidates = batch.candidates;
     const std::size_t vf = candidates.vertex_face.size();
     std::array<VertexRef, 4>& r = batch.refs[i];
@@ -189,28 +191,68 @@ struct CollisionDetector::Impl {
       const auto& faces = topology_of(c.face_body).faces;
       r = {VertexRef{c.vertex_body, c.vertex}, VertexRef{c.face_body, faces(c.face, 0)},
            VertexRef{c.face_body, faces(c.face, 1)}, VertexRef{c.face_body, faces(c.face, 2)}};
-      q.kind = PairKind::VertexFace;
     } else {
       const auto& c = candidates.edge_edge[i - vf];
       const auto& ea = topology_of(c.body_a).edges;
       const auto& eb = topology_of(c.body_b).edges;
       r = {VertexRef{c.body_a, ea[2 * c.edge_a]}, VertexRef{c.body_a, ea[2 * c.edge_a + 1]},
            VertexRef{c.body_b, eb[2 * c.edge_b]}, VertexRef{c.body_b, eb[2 * c.edge_b + 1]}};
-      q.kind = PairKind::EdgeEdge;
     }
+    return r;
+  }
+
+  // Fills `q` with the CCD query and the batch's vertex references with those of the pair at position i.
+  void gather(const Vertices& start, const Vertices& end, std::size_t i, ccd::CcdQuery& q) {
+    const std::array<VertexRef, 4>& r = fill_refs(i);
+    q.kind = i < batch.candidates.vertex_face.size() ? PairKind::VertexFace : PairKind::EdgeEdge;
     for (int k = 0; k < 4; ++k) {
       q.start[k] = start_of(r[k].body, start).row(r[k].vertex).transpose();
       q.end[k] = end_of(r[k].body, end).row(r[k].vertex).transpose();
     }
   }
 
-  // The chosen filter on one pair (the projection filter with the primitives' directions when asked).
-  bool culls(const ccd::CcdQuery& query, const ccd::CcdSettings& ccd_settings) const {
-    const bool nonpenetration = filter == ccd::CcdFilter::NonPenetration || filter == ccd::CcdFilter::Combined;
-    const bool projection = filter == ccd::CcdFilter::Projection || filter == ccd::CcdFilter::Combined;
-    if (nonpenetration && ccd::nonpenetration_filter_culls(query, ccd_settings)) return true;
-    return projection &&
-           ccd::projection_filter_culls(query, ccd_settings, ccd::ProjectionFilterOptions{settings.projection_normals});
+  // The projection filter (and the non-penetration filter behind it in the Combined mode) on the `todo` pairs, a block
+  // of one kind at a time (ccd::detail::projection_filter_block); stores the queries of the pairs kept.
+  void cull_in_blocks(const Vertices& start, const Vertices& end, const ccd::CcdSettings& ccd_settings) {
+    constexpr std::size_t lanes = ccd::detail::QueryBlock::kLanes;
+    const std::size_t vf = batch.candidates.vertex_face.size();
+    blocks.clear();
+    for (std::size_t j = 0; j < todo.size(); ++j) {
+      const bool new_block = blocks.empty() || j - blocks.back() == lanes || (todo[j] < vf) != (todo[j - 1] < vf);
+      if (new_block) blocks.push_back(j);
+    }
+    const ccd::ProjectionFilterOptions options{settings.projection_normals};
+    const bool nonpenetration = filter == ccd::CcdFilter::Combined;
+    for_each_index(blocks.size(), settings.parallel, [&](std::size_t b) {
+      const std::size_t first = blocks[b];
+      const std::size_t last = b + 1 < blocks.size() ? blocks[b + 1] : todo.size();
+      ccd::detail::QueryBlock block;
+      block.kind = todo[first] < vf ? PairKind::VertexFace : PairKind::EdgeEdge;
+      block.count = static_cast<int>(last - first);
+      for (int lane = 0; lane < block.count; ++lane) {
+        const std::array<VertexRef, 4>& r = fill_refs(todo[first + lane]);
+        for (int k = 0; k < 4; ++k) {
+          const double* x0 = start_of(r[k].body, start).row(r[k].vertex).data();
+          const double* x1 = end_of(r[k].body, end).row(r[k].vertex).data();
+          for (int c = 0; c < 3; ++c) {
+            block.x[0][k][c][lane] = x0[c];
+            block.x[1][k][c][lane] = x1[c];
+          }
+        }
+      }
+      block.pad_unused();
+      std::array<std::uint8_t, lanes> culled;
+      ccd::detail::projection_filter_block(block, ccd_settings, options, culled.data());
+      for (int lane = 0; lane < block.count; ++lane) {
+        if (culled[lane]) {
+          batch.keep[todo[first + lane]] = 0;
+          continue;
+        }
+        const std::size_t i = todo[first + lane];
+        batch.queries[i] = block.query(lane);
+        batch.keep[i] = nonpenetration && ccd::nonpenetration_filter_culls(batch.queries[i], ccd_settings) ? 0 : 1;
+      }
+    });
   }
 
   // Queries, culling and CCD for the pairs at the `todo` positions of the batch (the network mode always tests all).
@@ -230,13 +272,17 @@ struct CollisionDetector::Impl {
       stats.network_kept = n.kept;
       stats.network_ms = n.network_ms;
       stats.network_filters_ms = n.filters_ms;
+    } else if (filter == ccd::CcdFilter::Projection || filter == ccd::CcdFilter::Combined) {
+      cull_in_blocks(start, end, ccd_settings);
     } else {
       for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
-        // The query is built on the stack and stored only for the few pairs that survive the filters.
+        // None or NonPenetration: the query is built on the stack and stored only for the pairs that survive.
         const std::size_t i = todo[j];
         ccd::CcdQuery query;
         gather(start, end, i, query);
-        keep[i] = culls(query, ccd_settings) ? 0 : 1;
+        const bool culled =
+            filter == ccd::CcdFilter::NonPenetration && ccd::nonpenetration_filter_culls(query, ccd_settings);
+        keep[i] = culled ? 0 : 1;
         if (keep[i]) queries[i] = query;
       });
     }

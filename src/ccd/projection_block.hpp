@@ -1,0 +1,40 @@
+#pragma once
+// The projection filter (filters.cpp) on a block of pairs of one kind at a time, in structure-of-arrays layout and
+// without branches, so that the compiler runs several pairs per instruction. Internal to the library.
+#include <cstdint>
+#include <vector>
+
+#include "clothcd/ccd/ccd.hpp"
+
+namespace clothcd::ccd::detail {
+
+/// Positions of up to kLanes pairs of one kind: x[time][point][axis][lane], time 0 = start, 1 = end, points in
+/// CcdQuery order. The filter computes on every lane; lanes at or beyond `count` must hold copies (pad_unused()).
+struct QueryBlock {
+  static constexpr int kLanes = 16;  ///< Pairs per block.
+  PairKind kind = PairKind::VertexFace;  ///< Kind of every pair of the block.
+  int count = 0;                         ///< Pairs in use (lanes 0 .. count - 1).
+  alignas(64) double x[2][4][3][kLanes];  ///< Coordinates (left uninitialised: filled lane by lane).
+
+  /// Stores `query`'s positions in lane `lane` (the kind is the block's).
+  void set(int lane, const CcdQuery& query);
+  /// The query of lane `lane`.
+  [[nodiscard]] CcdQuery query(int lane) const;
+  /// Copies lane 0 (count >= 1) into the lanes from count on.
+  void pad_unused();
+};
+
+/// culled[i] = 1 for each lane i < block.count that the projection filter culls, 0 otherwise. The same test as
+/// projection_filter_culls(query, settings, options) with a coarser rounding bound (16 u |s|_1 max|coordinate| per
+/// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only
+/// when, along one direction s, every point of one primitive lies more than thickness |s| beyond every point of the
+/// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled.
+void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
+                             const ProjectionFilterOptions& options, std::uint8_t* culled);
+
+/// The block filter over a vector of queries of any kinds (blocks formed in order): culled[i] for queries[i]. For tests
+/// and benchmarks; the detector fills its blocks straight from the vertex arrays.
+void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,
+                               const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled);
+
+}  // namespace clothcd::ccd::detail
