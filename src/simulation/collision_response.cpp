@@ -6,8 +6,9 @@
 #include "clothcd/simulation/collision_response.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <tuple>
+#include <cstdint>
 
 #include "simulation/primitive_distance.hpp"
 
@@ -198,12 +199,36 @@ int FailSafe::grouped_vertices() const {
 }
 
 void sort_collisions(std::vector<Collision>& collisions) {
-  auto key = [](const Collision& c) {
-    return std::make_tuple(static_cast<int>(c.kind), c.vertices[0].body, c.vertices[0].vertex, c.vertices[1].body,
-                           c.vertices[1].vertex, c.vertices[2].body, c.vertices[2].vertex, c.vertices[3].body,
-                           c.vertices[3].vertex, c.toi);
+  // The key of each collision is packed once, then the keys are sorted and the collisions moved once into their places.
+  // A word holds a vertex reference (body and vertex index, both >= 0 and below 2^31, so the word orders like the
+  // pair); the kind goes into the top bit of the first word.
+  struct Key {
+    std::array<std::uint64_t, 4> words;
+    double toi;
+    std::uint32_t index;
   };
-  std::sort(collisions.begin(), collisions.end(), [&](const Collision& a, const Collision& b) { return key(a) < key(b); });
+  std::vector<Key> keys(collisions.size());
+  for (size_t i = 0; i < collisions.size(); ++i) {
+    const Collision& c = collisions[i];
+    Key& k = keys[i];
+    for (int j = 0; j < 4; ++j) {
+      k.words[j] = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.vertices[j].body)) << 32) |
+                   static_cast<std::uint32_t>(c.vertices[j].vertex);
+    }
+    k.words[0] |= static_cast<std::uint64_t>(c.kind == PairKind::EdgeEdge) << 63;
+    k.toi = c.toi;
+    k.index = static_cast<std::uint32_t>(i);
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    for (int w = 0; w < 4; ++w) {
+      if (a.words[w] != b.words[w]) return a.words[w] < b.words[w];
+    }
+    return a.toi < b.toi;
+  });
+  std::vector<Collision> sorted;
+  sorted.reserve(collisions.size());
+  for (const Key& k : keys) sorted.push_back(collisions[k.index]);
+  collisions.swap(sorted);
 }
 
 }  // namespace clothcd::simulation
