@@ -57,6 +57,8 @@ constexpr int kMaxRefinements = 40;     // bracket shrinking steps per sign
 constexpr int kSharedRootAttempt = 0;
 constexpr int kNarrowBracketsBeforeSharedRoot = 2;
 constexpr double kNarrowBracket = 1e-12;  // brackets are shrunk to this width before exact Bernstein signs
+constexpr double kToiBracket = 0x1p-24;   // a hit's bracket is shrunk to this width for its time of impact
+constexpr int kMaxToiRefinements = 64;
 
 // sum c[i] t^i, degree at most 3.
 struct Poly {
@@ -609,6 +611,15 @@ class System {
     if (!p) p = &store_.emplace_back(w_[a][u] * w_[b][u] + w_[a][v] * w_[b][v]);
     return *p;
   }
+  // The k-th component of the normal (W[1] - W[0]) x (W[2] - W[0]) of W's plane: cross(0, 1) + cross(1, 2) +
+  // cross(2, 0) in projection k. Where it is not zero the projection dropping axis k maps the plane through W[0],
+  // W[1], W[2] one to one (vertex-face: the face's plane; edge-edge: the plane of da and db, where all four points of
+  // W form a parallelogram, so no three of them are collinear).
+  const Poly& normal(int k) {
+    const Poly*& p = normal_[k];
+    if (!p) p = &store_.emplace_back(cross(k, 0, 1) + cross(k, 1, 2) - cross(k, 0, 2));
+    return *p;
+  }
 
  private:
   Poly d_;
@@ -626,6 +637,7 @@ class System {
   std::deque<Poly> store_;  // the polynomials built so far (a deque: their addresses stay valid)
   const Poly* cross_[3][4][4] = {};
   const Poly* dot_[3][4][4] = {};
+  const Poly* normal_[3] = {};
 };
 
 // Makes the bracketed candidate c the exact rational time of its root when that is cheap to find: the root of a
@@ -670,7 +682,10 @@ void pin_rational_root(Candidate& c, const System& system) {
 // a triangle of W projects to a non-degenerate triangle with the origin strictly inside (three cross products of one
 // strict sign), that projection maps W's plane one to one, so the origin is in the triangle itself: inside, without
 // the other projections. The projections go in order of decreasing rounded normal component (the best conditioned
-// first), so that this shortcut, or an exclusion, usually comes from the first one.
+// first), so that this shortcut, or an exclusion, usually comes from the first one. Every candidate is a time where
+// D = 0, so W and the origin lie in one plane: when the best projection's normal component N_k (System::normal) is
+// not zero there, that projection maps the plane one to one and decides alone, its triangles never degenerate (no dot
+// product is needed), and the other projections (often degenerate for the handcrafted contacts) are skipped.
 class Predicate {
  public:
   // only_axis >= 0: the projection dropping that axis maps W's plane one to one at the candidate, so it alone decides.
@@ -690,7 +705,7 @@ class Predicate {
                                          : candidate_.lo.estimate();
     const std::array<int, 3> axes =
         only_axis_ >= 0 ? std::array<int, 3>{only_axis_, only_axis_, only_axis_} : system_.axes_by_normal(t);
-    const int axis_count = only_axis_ >= 0 ? 1 : 3;
+    const int axis_count = only_axis_ >= 0 || normal_sign(axes[0]) != 0 ? 1 : 3;
     for (int i = 0; i < axis_count && result && !strictly; ++i) {
       const int k = axes[static_cast<std::size_t>(i)];
       bool inside = false;
@@ -715,6 +730,12 @@ class Predicate {
       cached = s.value_or(0);
     }
     return cached;
+  }
+  // The exact sign of N_k at the candidate, 0 when it is zero or cannot be decided (no failure: only a shortcut).
+  int normal_sign(int k) {
+    const Poly& n = system_.normal(k);
+    if (degree(n) < 0) return 0;
+    return sign_at(candidate_, n).value_or(0);
   }
   int cross(int k, int a, int b) {
     if (a > b) return -cross(k, b, a);
@@ -752,8 +773,11 @@ double lower_bound(const Expansion& t) {
   return std::max(value, 0.0);
 }
 
-// A double not above the candidate's time (within a few units in the last place).
-double lower_bound(const Candidate& c) {
+// A double not above the candidate's time: within a few units in the last place of a grid or rational time, within
+// kToiBracket of a bracketed root (the bracket is shrunk first, since the predicate may have held on a wide one).
+double lower_bound(Candidate& c) {
+  for (int i = 0; i < kMaxToiRefinements && !c.point && !c.rational && (c.hi - c.lo).estimate() > kToiBracket; ++i)
+    if (!refine(c, *c.root_of)) break;
   if (!c.rational) return lower_bound(c.lo);
   double value = c.num.estimate() / c.den.estimate();
   // value >= 2^-200 keeps the exact product den * value far above the underflow threshold.
@@ -828,15 +852,13 @@ bool add_roots(const Poly& p, std::vector<Candidate>& out) {
 }
 
 // With D identically zero, an axis k whose projection maps the plane of W (and the origin) one to one at every time
-// of the step, or -1. W[0], W[1], W[2] span that plane whenever they are not collinear (vertex-face: the face's edge
-// vectors; edge-edge: da and db, and all four points of W then form a parallelogram, so any three are not
-// collinear); the k-th component of its normal is N_k = cross(0, 1) + cross(1, 2) + cross(2, 0) in projection k.
-// When N_k's Bernstein coefficients on [0, 1] all have one strict sign, N_k never vanishes: the projection is one to
-// one on the plane and no projected triangle of W degenerates. Axes are tried by decreasing rounded |N_k| at t = 1/2.
+// of the step, or -1: when the Bernstein coefficients of the normal's component N_k (System::normal) on [0, 1] all
+// have one strict sign, N_k never vanishes, so the projection is one to one on the plane and no projected triangle of
+// W degenerates. Axes are tried by decreasing rounded |N_k| at t = 1/2.
 int fixed_projection_axis(System& system) {
   const Expansion zero(0.0), one(1.0);
   for (const int k : system.axes_by_normal(0.5)) {
-    const Poly normal = system.cross(k, 0, 1) + system.cross(k, 1, 2) - system.cross(k, 0, 2);
+    const Poly& normal = system.normal(k);
     const int n = degree(normal);
     if (n < 0) continue;
     const BernsteinSigns signs = bernstein_signs(normal, n, zero, one);
