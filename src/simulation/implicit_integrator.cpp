@@ -29,13 +29,23 @@ void filter_pinned(const ClothModel& model, Eigen::Ref<Eigen::VectorXd> v) {
 
 void ImplicitIntegrator::multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
   out = mass_diagonal_.cwiseProduct(p);
-  for (size_t s = 0; s < blocks_.size(); ++s) {
-    const Spring& spring = model.springs[s];
-    const SpringBlock& b = blocks_[s];
-    const Eigen::Vector3d q = p.segment<3>(3 * spring.a) - p.segment<3>(3 * spring.b);
-    const Eigen::Vector3d sq = b.alpha * b.n.dot(q) * b.n + b.beta * q;
-    out.segment<3>(3 * spring.a) += sq;
-    out.segment<3>(3 * spring.b) -= sq;
+  const double* in = p.data();
+  double* sum = out.data();
+  for (const SpringBlock& b : blocks_) {
+    // S q = alpha (n . q) n + beta q with the operations of the Eigen expression alpha * n.dot(q) * n + beta * q, in its
+    // order: n . q = (n0 q0 + n1 q1) + n2 q2, then per axis (alpha (n . q)) n_c + beta q_c. The block is read into
+    // locals first, as the stores into `sum` could otherwise alias it.
+    const double n0 = b.n[0], n1 = b.n[1], n2 = b.n[2], beta = b.beta;
+    const int a3 = b.a3, b3 = b.b3;
+    const double q0 = in[a3] - in[b3], q1 = in[a3 + 1] - in[b3 + 1], q2 = in[a3 + 2] - in[b3 + 2];
+    const double scale = b.alpha * ((n0 * q0 + n1 * q1) + n2 * q2);
+    const double s0 = scale * n0 + beta * q0, s1 = scale * n1 + beta * q1, s2 = scale * n2 + beta * q2;
+    sum[a3] += s0;
+    sum[a3 + 1] += s1;
+    sum[a3 + 2] += s2;
+    sum[b3] -= s0;
+    sum[b3 + 1] -= s1;
+    sum[b3 + 2] -= s2;
   }
   filter_pinned(model, out);
 }
@@ -64,8 +74,11 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
     const double length = d.norm();
     const double k = stiffness_of(cs, spring.kind);
     SpringBlock& b = blocks_[s];
+    b.a3 = 3 * spring.a;
+    b.b3 = 3 * spring.b;
     if (length <= 1e-12) {
-      b = {Eigen::Vector3d::UnitX(), 0.0, 0.0};
+      b.n = Eigen::Vector3d::UnitX();
+      b.alpha = b.beta = 0.0;
       continue;
     }
     b.n = d / length;

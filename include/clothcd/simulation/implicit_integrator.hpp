@@ -37,11 +37,13 @@ class ImplicitIntegrator {
                                       Vertices& velocities);
 
  private:
-  /// Per-spring linearisation: S q = alpha n (n . q) + beta q for a relative vector q.
+  /// Per-spring linearisation: S q = alpha n (n . q) + beta q for a relative vector q = p_a - p_b.
   struct SpringBlock {
     Eigen::Vector3d n;
     double alpha;
     double beta;
+    int a3;  ///< 3 a: offset of the spring's first vertex in a stacked 3n vector.
+    int b3;  ///< 3 b: the same for its second vertex.
   };
   void multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
 
