@@ -105,17 +105,31 @@ Eigen::Vector3d area_weighted_centre(const Vertices& v, const Faces& faces) {
   return area > 0 ? Eigen::Vector3d(centre / area) : Eigen::Vector3d(v.colwise().mean().transpose());
 }
 
-// What a rigidly moving model can reuse between rebuilds: the centre of eqs. 11-14 moves with the model, the triangles
-// touching a vertex never change, and each triangle's corner moments about the centre only turn with the pose
-// (p - c = R (p0 - c0), so sum (p - c) = R sum (p0 - c0) and sum (p - c)(p - c)^T = R [sum (p0 - c0)(p0 - c0)^T] R^T).
+// A triangle's corner moments about a centre c: sum (p - c), then the upper triangle of sum (p - c)(p - c)^T row by row.
+using FaceMoments = std::array<double, 9>;
+
+// What a rigidly moving model can reuse between rebuilds: the centre of eqs. 11-14 moves with the model, and each
+// triangle's corner moments about the centre only turn with the pose (p - c = R (p0 - c0), so sum (p - c) =
+// R sum (p0 - c0) and sum (p - c)(p - c)^T = R [sum (p0 - c0)(p0 - c0)^T] R^T).
 struct AdaptiveHints {
-  Eigen::Vector3d centre;               // area-weighted centre at the current pose
-  Eigen::Matrix3d rotation;             // the pose's rotation R
-  const std::vector<int>* face_begin;   // faces of vertex i: face_list[face_begin[i] .. face_begin[i + 1])
+  Eigen::Vector3d centre;              // area-weighted centre at the current pose
+  Eigen::Matrix3d rotation;            // the pose's rotation R
+  const std::vector<int>* face_begin;  // faces of vertex i (each once): face_list[face_begin[i] .. face_begin[i + 1])
   const std::vector<int>* face_list;
-  const std::vector<Eigen::Vector3d>* face_sum;    // per face: sum of its corners minus the centre, at rest
-  const std::vector<Eigen::Matrix3d>* face_outer;  // per face: sum of their outer products, at rest
+  const std::vector<FaceMoments>* moments;  // per face, at rest
 };
+
+// The FaceMoments of the triangle with corner rows `corners` about `centre`.
+FaceMoments face_moments(const Vertices& v, const int* corners, const Eigen::Vector3d& centre) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d p = v.row(corners[k]).transpose() - centre;
+    sum += p;
+    outer.noalias() += p * p.transpose();
+  }
+  return {sum.x(), sum.y(), sum.z(), outer(0, 0), outer(0, 1), outer(0, 2), outer(1, 1), outer(1, 2), outer(2, 2)};
+}
 
 // Jin et al. eqs. 11-18, then (optionally) refine_axes on S'. `scratch.keep` is left all zero on return.
 Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSettings& settings, ObbScratch& scratch,
@@ -150,29 +164,47 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
   long long corners = 0;
-  if (hints) {  // the faces of the kept vertices, each once, from their moments at rest
-    // First the distinct faces in order of first appearance (without branches, as S' above), then their moments.
-    scratch.face_seen.assign(static_cast<size_t>(faces.rows()), 0);
-    scratch.kept_faces.resize(static_cast<size_t>(faces.rows()) + 1);  // + 1: a repeat is written after the last new face
-    char* const seen = scratch.face_seen.data();
+  if (hints) {  // the triangles touching S', each once, from their moments at rest
+    // First the list of those faces, without branches on the data and without loads that wait for stores: a scan of
+    // every face when the model has few faces, else the faces of each vertex of S' taken from the list of their first
+    // corner in S'. The two orders differ, so the sums may differ in the last bits. Then the sum of their moments.
+    scratch.kept_faces.resize(static_cast<size_t>(faces.rows()));
     int* const kept_faces = scratch.kept_faces.data();
     const int* const face_begin = hints->face_begin->data();
     const int* const face_list = hints->face_list->data();
+    const int* const corner_rows = faces.data();
     size_t face_count = 0;
-    for (size_t k = 0; k < kept_count; ++k) {
-      for (int e = face_begin[kept_rows[k]]; e < face_begin[kept_rows[k] + 1]; ++e) {
-        const int f = face_list[e];
-        kept_faces[face_count] = f;
-        face_count += !seen[f];
-        seen[f] = 1;
+    Eigen::Index candidates = 0;
+    for (size_t k = 0; k < kept_count; ++k) candidates += face_begin[kept_rows[k] + 1] - face_begin[kept_rows[k]];
+    if (faces.rows() <= 2 * candidates) {
+      for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+        const int* const c = corner_rows + 3 * f;
+        kept_faces[face_count] = int(f);
+        face_count += size_t(is_kept[c[0]] | is_kept[c[1]] | is_kept[c[2]]);
+      }
+    } else {
+      for (size_t k = 0; k < kept_count; ++k) {
+        const int vertex = kept_rows[k];
+        for (int e = face_begin[vertex]; e < face_begin[vertex + 1]; ++e) {
+          const int f = face_list[e];
+          const int* const c = corner_rows + 3 * f;
+          int first = c[2];
+          first = is_kept[c[1]] ? c[1] : first;
+          first = is_kept[c[0]] ? c[0] : first;
+          kept_faces[face_count] = f;
+          face_count += size_t(first == vertex);
+        }
       }
     }
+    FaceMoments total{};
+    const FaceMoments* const moments = hints->moments->data();
     for (size_t j = 0; j < face_count; ++j) {
-      sum += (*hints->face_sum)[size_t(kept_faces[j])];
-      outer += (*hints->face_outer)[size_t(kept_faces[j])];
+      const FaceMoments& m = moments[kept_faces[j]];
+      for (size_t k = 0; k < total.size(); ++k) total[k] += m[k];
     }
     corners = 3 * static_cast<long long>(face_count);
-    sum = hints->rotation * sum;
+    sum = hints->rotation * Eigen::Vector3d(total[0], total[1], total[2]);
+    outer << total[3], total[4], total[5], total[4], total[6], total[7], total[5], total[7], total[8];
     outer = hints->rotation * outer * hints->rotation.transpose();
   } else {
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
@@ -194,14 +226,13 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
       ++corners;
     }
   }
-  scratch.kept.clear();
-  for (int i : kept_index) {
-    keep[size_t(i)] = 0;
-    scratch.kept.push_back(v.row(i).transpose());
-  }
+  for (int i : kept_index) keep[size_t(i)] = 0;
   const Eigen::Vector3d mean = sum / double(corners);
   const Eigen::Matrix3d axes = principal_axes(outer / double(corners) - mean * mean.transpose());
-  return settings.refine_axes ? refine_axes(scratch.kept, axes, scratch) : axes;
+  if (!settings.refine_axes) return axes;
+  scratch.kept.clear();
+  for (int i : kept_index) scratch.kept.push_back(v.row(i).transpose());
+  return refine_axes(scratch.kept, axes, scratch);
 }
 
 // moved = rest moved by pose (same shape). Row by row, summed in the order of the Eigen expression
@@ -341,30 +372,30 @@ SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& se
     hull_points.row(Eigen::Index(i)) = original.vertices.row(hull_indices_[i]);
   hull_support_ = SupportPoints(hull_points);
   rest_centre_ = area_weighted_centre(simplified_.vertices, simplified_.faces);
-  // Vertex -> face adjacency of the simplified model (compressed rows).
+  // Vertex -> face adjacency of the simplified model (compressed rows; a face once per distinct corner).
+  const auto distinct_corner = [this](Eigen::Index f, int k) {
+    const auto& c = simplified_.faces;
+    return (k < 1 || c(f, k) != c(f, 0)) && (k < 2 || c(f, k) != c(f, 1));
+  };
   face_begin_.assign(static_cast<size_t>(simplified_.vertex_count()) + 1, 0);
   for (Eigen::Index f = 0; f < simplified_.face_count(); ++f)
-    for (int k = 0; k < 3; ++k) ++face_begin_[size_t(simplified_.faces(f, k)) + 1];
+    for (int k = 0; k < 3; ++k)
+      if (distinct_corner(f, k)) ++face_begin_[size_t(simplified_.faces(f, k)) + 1];
   for (size_t i = 1; i < face_begin_.size(); ++i) face_begin_[i] += face_begin_[i - 1];
   face_list_.resize(size_t(face_begin_.back()));
   std::vector<int> fill(face_begin_.begin(), face_begin_.end() - 1);
   for (Eigen::Index f = 0; f < simplified_.face_count(); ++f)
-    for (int k = 0; k < 3; ++k) face_list_[size_t(fill[size_t(simplified_.faces(f, k))]++)] = int(f);
-  face_sum_.assign(static_cast<size_t>(simplified_.face_count()), Eigen::Vector3d::Zero());
-  face_outer_.assign(face_sum_.size(), Eigen::Matrix3d::Zero());
-  for (Eigen::Index f = 0; f < simplified_.face_count(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d p = simplified_.vertices.row(simplified_.faces(f, k)).transpose() - rest_centre_;
-      face_sum_[size_t(f)] += p;
-      face_outer_[size_t(f)].noalias() += p * p.transpose();
-    }
-  }
+    for (int k = 0; k < 3; ++k)
+      if (distinct_corner(f, k)) face_list_[size_t(fill[size_t(simplified_.faces(f, k))]++)] = int(f);
+  face_moments_.resize(static_cast<size_t>(simplified_.face_count()));
+  for (Eigen::Index f = 0; f < simplified_.face_count(); ++f)
+    face_moments_[size_t(f)] = face_moments(simplified_.vertices, simplified_.faces.data() + 3 * f, rest_centre_);
   moved_ = simplified_;
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
   move_rows(simplified_.vertices, pose, moved_.vertices);
-  const AdaptiveHints hints{pose * rest_centre_, pose.linear(), &face_begin_, &face_list_, &face_sum_, &face_outer_};
+  const AdaptiveHints hints{pose * rest_centre_, pose.linear(), &face_begin_, &face_list_, &face_moments_};
   Obb box;
   box.axes = adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_, &hints);
   // Extents: along a world axis a the moved hull vertices project to a . (R p + t) = (R^T a) . p + a . t, so the

@@ -144,7 +144,10 @@ TEST_CASE("The simplified-model box per update: exact extents, axes as a full re
   const TriangleMesh mesh = test::load_model("dinosaur");
   ObbSettings paper;
   paper.refine_axes = false;
-  for (const ObbSettings& settings : {paper, ObbSettings{}}) {
+  ObbSettings few_slabs = paper;  // few kept vertices: their triangles are found from the vertices, not by a face scan
+  few_slabs.slabs = 2;
+  for (const ObbSettings& settings : {paper, few_slabs, ObbSettings{}}) {
+    CAPTURE(settings.slabs, settings.refine_axes);
     SimplifiedObb builder(mesh, settings);
     std::mt19937_64 random(5);
     for (int step = 0; step < 20; ++step) {

@@ -3,6 +3,7 @@
 /// Oriented bounding boxes: vertex PCA, the paper's fast adaptive OBB (Jin et al. eqs. 11-18), the same on a
 /// QEM-simplified model grown to bound the original, and a tight reference from the convex hull.
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -39,8 +40,7 @@ struct ObbScratch {
   std::vector<Eigen::Vector3d> kept;     ///< The points of S'.
   std::vector<Eigen::Vector2d> plane;    ///< S' projected on a plane.
   std::vector<Eigen::Vector2d> hull;     ///< Its 2-D convex hull.
-  std::vector<char> face_seen;           ///< #F flags: triangles of S' already counted (SimplifiedObb only).
-  std::vector<int> kept_faces;           ///< The distinct triangles of S' (SimplifiedObb only).
+  std::vector<int> kept_faces;           ///< The triangles touching S' (SimplifiedObb only).
 };
 
 /// The box of `mesh` (vertices #V x 3, faces #F x 3) by `method`; axes right-handed, half extents >= 0.
@@ -60,9 +60,10 @@ void grow_obb(Obb& box, const Vertices& points);
 /// The box of update() takes its axes from the fast adaptive OBB of the simplified model at `pose` and its extents from
 /// the projections of the original model's convex-hull vertices at `pose`; because a rigid (indeed any affine) map sends
 /// the hull of the points to the hull of the mapped points, the box contains every original vertex at that pose.
-/// Per update only the simplified model is moved: the centre of eqs. 11-14 is moved from rest, the triangles of S' come
-/// from a vertex -> face table with their covariance moments precomputed at rest (turned by the pose), and each extent is an exact support query over the hull vertices at rest along the
-/// axis turned back by the pose (SupportPoints: most hull vertices are skipped by sphere bounds, none wrongly).
+/// Per update only the simplified model is moved: the centre of eqs. 11-14 is moved from rest, the triangles touching S'
+/// bring their covariance moments precomputed at rest (turned by the pose), and each extent is an exact support query
+/// over the hull vertices at rest along the axis turned back by the pose (SupportPoints: most hull vertices are skipped
+/// by sphere bounds, none wrongly).
 class SimplifiedObb {
  public:
   /// Simplifies `original` to `settings.simplify_ratio` of its faces (QEM) and records its convex-hull vertices.
@@ -87,8 +88,9 @@ class SimplifiedObb {
   SupportPoints hull_support_;  // original hull vertices at rest
   Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();  // eqs. 11-14 on the simplified model at rest
   std::vector<int> face_begin_, face_list_;  // simplified model: faces of vertex i in face_list_[face_begin_[i] ..)
-  std::vector<Eigen::Vector3d> face_sum_;    // simplified model at rest, per face: sum of (corner - rest_centre_)
-  std::vector<Eigen::Matrix3d> face_outer_;  // ... and sum of their outer products
+  // Simplified model at rest, per face: its corners' moments about rest_centre_ (sum of p - c, then the upper triangle
+  // of the sum of (p - c)(p - c)^T: xx, xy, xz, yy, yz, zz).
+  std::vector<std::array<double, 9>> face_moments_;
   ObbSettings settings_;
   TriangleMesh moved_;  // scratch: simplified model at the current pose
   ObbScratch scratch_;
