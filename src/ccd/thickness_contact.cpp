@@ -3,7 +3,8 @@
 //
 // Lipschitz bound: a closest pair of points is sum_i alpha_i x_i(t) - sum_j beta_j y_j(t) with convex weights, so
 // |dist(t) - dist(s)| <= L |t - s| with L = max_{i,j} |dx_i - dy_j| (dx the displacement over the step). On a piece
-// [a, b], dist(t) >= max(d(a) - L (t - a), d(b) - L (b - t)) >= (d(a) + d(b) - L (b - a)) / 2. Pieces are split
+// [a, b], dist(t) >= max(d(a) - L (t - a), d(b) - L (b - t)) >= (d(a) + d(b) - L (b - a)) / 2; the whole step is
+// cleared from the start sample alone when d(0) - L exceeds h + margin. Pieces are split
 // depth-first from the left, so the first piece not proven clear holds the earliest contact:
 //   - cleared when the bound exceeds h + margin;
 //   - proven hit when d(a) <= h - margin at its start (everything before was cleared, so toi = a), or when d(b) is
@@ -125,10 +126,10 @@ Outcome search_piece(Search& search, double a, double b, const Sample& sa, const
 
 double max_relative_displacement(const CcdQuery& query, const Geometry& g) {
   const int split = query.kind == PairKind::VertexFace ? 1 : 2;
-  double largest = 0.0;
+  double largest = 0.0;  // squared: one square root at the end gives the same result (it is monotone)
   for (int i = 0; i < split; ++i)
-    for (int j = split; j < 4; ++j) largest = std::max(largest, (g.delta[i] - g.delta[j]).norm());
-  return largest;
+    for (int j = split; j < 4; ++j) largest = std::max(largest, (g.delta[i] - g.delta[j]).squaredNorm());
+  return std::sqrt(largest);
 }
 
 double rounding_margin(const CcdQuery& query) {
@@ -173,6 +174,8 @@ CcdResult thick_contact(const CcdQuery& query, double thickness) {
   search.clear_above = thickness + margin;
   search.hit_below = thickness - margin;
   const Sample s0 = sample_at(search, 0.0);
+  // The distance stays above d(0) - L t >= d(0) - L all step: a pair that far apart at the start needs no more samples.
+  if (s0.distance - search.lipschitz > search.clear_above) return CcdResult{};
   const Sample s1 = sample_at(search, 1.0);
   const Outcome outcome = search_piece(search, 0.0, 1.0, s0, s1, 0);
   CcdResult result;

@@ -211,3 +211,31 @@ TEST_CASE("thickness: pairs sliding past at about h are never missed", "[ccd][th
   CHECK(hits > 50);
   CHECK(separated > 50);
 }
+
+TEST_CASE("thickness: a pair far apart at the start is cleared from it only when it cannot come within h",
+          "[ccd][thickness]") {
+  // A vertex 5 cm above a triangle moving towards it (straight down or slanted) or sideways by `move`: d(0) - L is
+  // above h for the short moves only; the answer must follow the brute-force distance either way.
+  const double h = 0.004, height = 0.05;
+  ccd::CcdSettings settings;
+  settings.thickness = h;
+  const std::array<Vector3d, 4> start{Vector3d(0, 0, height), Vector3d(-0.1, -0.1, 0), Vector3d(0.1, -0.1, 0),
+                                      Vector3d(0, 0.1, 0)};
+  int hits = 0, separated = 0;
+  for (const double move : {height - h - 1e-3, height - h - 1e-6, height - h + 1e-6, height - h + 1e-3, 0.2}) {
+    for (const Vector3d& direction : {Vector3d(0, 0, -1), Vector3d(0.6, 0, -0.8), Vector3d(1, 0, 0)}) {
+      std::array<Vector3d, 4> end = start;
+      end[0] += move * direction;
+      const ccd::CcdQuery query = make_query(PairKind::VertexFace, start, end);
+      const ccd::CcdResult result = ccd::continuous_collision(query, settings);
+      const double distance = clothcd::test::sampled_min_distance(query, 16, 2048);
+      INFO("move " << move << " direction " << direction.transpose() << " distance " << distance);
+      if (distance <= h) CHECK(result.hit);
+      if (distance > h + 1e-5) CHECK(result.state == ccd::CcdState::Separated);
+      hits += result.hit ? 1 : 0;
+      separated += result.hit ? 0 : 1;
+    }
+  }
+  CHECK(hits >= 4);
+  CHECK(separated >= 6);
+}
