@@ -7,8 +7,9 @@
 #include <array>
 #include <limits>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define CLOTHCD_SLAB_AVX2 1
+#include "cpu_features.hpp"
+
+#if defined(CLOTHCD_GEOMETRY_AVX2)
 #include <immintrin.h>
 #endif
 
@@ -43,7 +44,7 @@ double squared_distance(const double* p, const Eigen::Vector3d& centre) {
   return (Eigen::Vector3d(p[0], p[1], p[2]) - centre).squaredNorm();
 }
 
-#if defined(CLOTHCD_SLAB_AVX2)
+#if defined(CLOTHCD_GEOMETRY_AVX2)
 
 // Per slab: the running best of {p[b], p[c], -p[b], -p[c]} and of the distance from the centre (lane 1 unused, never
 // beaten), with their rows as doubles (exact) so that one comparison mask selects value and row together.
@@ -82,18 +83,27 @@ __attribute__((target("avx2"))) void slab_extremes_avx2(const Vertices& points, 
   const double never = -std::numeric_limits<double>::infinity();
   std::fill_n(best.begin(), slab_count, SlabBest{{never, never, never, never}, {-1, -1, -1, -1}, {never, never},
                                                  {-1, -1}});
+  // Slab of each axis as in Slabs::of, for x, y, z at once (the fourth lane unused), offset to the axis's slabs.
+  const __m256d lo = _mm256_setr_pd(cut.lo[0], cut.lo[1], cut.lo[2], 0.0);
+  const __m256d inv_width = _mm256_setr_pd(cut.inv_width[0], cut.inv_width[1], cut.inv_width[2], 0.0);
+  const __m128i last = _mm_set1_epi32(cut.count - 1), first_of_axis = _mm_setr_epi32(0, cut.count, 2 * cut.count, 0);
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
   constexpr int kBlock = 64;
-  std::array<int, 3 * kBlock> slab_of;
+  alignas(16) std::array<int, 4 * kBlock> slab_of;
   const Eigen::Index n = points.rows();
   for (Eigen::Index start = 0; start < n; start += kBlock) {
     const int count = static_cast<int>(std::min<Eigen::Index>(kBlock, n - start));
-    for (int j = 0; j < count; ++j)
-      for (int a = 0; a < 3; ++a) slab_of[size_t(3 * j + a)] = a * cut.count + cut.of(points.data() + 3 * (start + j), a);
+    for (int j = 0; j < count; ++j) {
+      const __m256d p = _mm256_maskload_pd(points.data() + 3 * (start + j), xyz);
+      const __m128i slab = _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_sub_pd(p, lo), inv_width));
+      _mm_store_si128(reinterpret_cast<__m128i*>(slab_of.data() + 4 * j),
+                      _mm_add_epi32(_mm_min_epi32(slab, last), first_of_axis));
+    }
     for (int j = 0; j < count; ++j) {
       const double* p = points.data() + 3 * (start + j);
       const __m128d far = _mm_set_pd(never, squared_distance(p, centre));
       const __m256d row = _mm256_set1_pd(double(start + j));
-      for (int a = 0; a < 3; ++a) take_better(best[size_t(slab_of[size_t(3 * j + a)])], p, a, far, row);
+      for (int a = 0; a < 3; ++a) take_better(best[size_t(slab_of[size_t(4 * j + a)])], p, a, far, row);
     }
   }
   for (int j = 0; j < slab_count; ++j) {
@@ -105,11 +115,6 @@ __attribute__((target("avx2"))) void slab_extremes_avx2(const Vertices& points, 
     out[3] = static_cast<int>(slab.extreme_row[1]);
     out[4] = static_cast<int>(slab.extreme_row[3]);
   }
-}
-
-bool avx2_supported() {
-  static const bool supported = __builtin_cpu_supports("avx2") != 0;
-  return supported;
 }
 
 #endif
@@ -140,8 +145,8 @@ void slab_extremes_reference(const Vertices& points, const Eigen::Vector3d& cent
 }
 
 void slab_extremes(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
-#if defined(CLOTHCD_SLAB_AVX2)
-  if (avx2_supported()) return slab_extremes_avx2(points, centre, Slabs(points, slabs), rows);
+#if defined(CLOTHCD_GEOMETRY_AVX2)
+  if (avx2_available()) return slab_extremes_avx2(points, centre, Slabs(points, slabs), rows);
 #endif
   slab_extremes_reference(points, centre, slabs, rows);
 }

@@ -63,6 +63,9 @@ TEST_CASE("SupportPoints on degenerate sets", "[geometry][obb][support]") {
   }
   same.rowwise() = Eigen::RowVector3d(1.5, -2.0, 3.0);
   for (const Vertices* points : {&grid, &plane, &line, &same}) check_against_scan(*points, random);
+  Vertices big_grid(3 * SupportPoints::kScanAll, 3);  // more than a whole scan takes: the group walk, with ties
+  for (Eigen::Index i = 0; i < big_grid.rows(); ++i) big_grid.row(i) << cell(random), cell(random), cell(random);
+  check_against_scan(big_grid, random);
   const SupportPoints empty{Vertices(0, 3)};
   CHECK(empty.max_dot(Eigen::Vector3d::UnitX()) == -std::numeric_limits<double>::infinity());
   const auto [low, high] = empty.min_max_dot(Eigen::Vector3d::UnitX());

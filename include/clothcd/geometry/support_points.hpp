@@ -28,7 +28,11 @@ class SupportPoints {
 
   /// {min, max} over the points p of direction . p in one walk over the groups: exactly {-max_dot(-direction),
   /// max_dot(direction)} (negating the direction negates every product exactly), {+infinity, -infinity} when empty.
+  /// Sets of at most kScanAll points are scanned whole, four points at a time, where the CPU has AVX2.
   [[nodiscard]] std::pair<double, double> min_max_dot(const Eigen::Vector3d& direction) const;
+
+  /// The most points min_max_dot scans whole instead of walking the groups.
+  static constexpr int kScanAll = 1024;
 
   /// Number of points.
   [[nodiscard]] std::size_t size() const { return points_.size(); }
@@ -43,6 +47,8 @@ class SupportPoints {
   std::vector<int> begin_;
   std::vector<Eigen::Vector3d> centre_;
   std::vector<double> radius_;
+  size_t scan_count_ = 0;            // points in coordinates_ (a multiple of 4; 0: no whole scan)
+  std::vector<double> coordinates_;  // for a whole scan: all x, then all y, then all z, padded to scan_count_
 };
 
 }  // namespace clothcd::geometry
