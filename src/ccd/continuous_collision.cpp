@@ -193,11 +193,11 @@ PieceOutcome classify_projections(const PointSet& boxes, bool d_changes_sign) {
   return PieceOutcome::Undecided;
 }
 
-// True when D may vanish at the step's end with positions x and the origin may be in conv W there: pieces ending
-// there can never be decided by intervals (an exact touch at t = 0 or 1), so the exact tiers decide the query at once.
-bool undecidable_end(PairKind kind, const Positions& x) {
-  const IVec a = x[1] - x[0], b = x[2] - x[0], c = x[3] - x[0];
-  if (certain_sign(dot(a, cross(b, c))) != 0) return false;
+// True when D (d_at_end, its enclosure there) may vanish at the step's end with positions x and the origin may be in
+// conv W there: pieces ending there can never be decided by intervals (an exact touch at t = 0 or 1), so the exact
+// tiers decide the query at once.
+bool undecidable_end(PairKind kind, const Positions& x, const Interval& d_at_end) {
+  if (certain_sign(d_at_end) != 0) return false;
   const PointSet w = difference_points(kind, x);
   return !boxes_exclude_origin(w, 0.0) && classify_projections(w, false) != PieceOutcome::Clear;
 }
@@ -233,8 +233,9 @@ double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4
   return t0;
 }
 
+// known_bernstein: bernstein_of_d(x0, x1) when the caller has it already, else nullptr.
 PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Positions& x0, const Positions& x1,
-                                  int depth) {
+                                  int depth, const std::array<Interval, 4>* known_bernstein = nullptr) {
   const PairKind kind = search.query.kind;
   const PointSet w0 = difference_points(kind, x0);
   const PointSet w1 = difference_points(kind, x1);
@@ -242,7 +243,7 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
   boxes.count = w0.count;
   for (int m = 0; m < w0.count; ++m) boxes.w[m] = hull(w0.w[m], w1.w[m]);
   if (boxes_exclude_origin(boxes, 0.0)) return PieceOutcome::Clear;
-  const std::array<Interval, 4> bernstein = bernstein_of_d(x0, x1);
+  const std::array<Interval, 4> bernstein = known_bernstein ? *known_bernstein : bernstein_of_d(x0, x1);
   if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
   const int sign_start = certain_sign(bernstein[0]);
   const int sign_end = certain_sign(bernstein[3]);
@@ -335,12 +336,16 @@ CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
 
 CcdResult contact_without_thickness(const CcdQuery& query, bool nonpenetration_checked = false) {
   if (!nonpenetration_checked && nonpenetration_filter_culls(query)) return CcdResult{};
-  const Positions start = positions_at(query, 0.0), end = positions_at(query, 1.0);
-  if (fits_fast_path(query) && !undecidable_end(query.kind, start) && !undecidable_end(query.kind, end)) {
-    Search search{query, 1.0};
-    const PieceOutcome outcome = search_exact_contact(search, 0.0, 1.0, start, end, 0);
-    if (outcome == PieceOutcome::Clear) return CcdResult{};
-    if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
+  if (fits_fast_path(query)) {
+    const Positions start = positions_at(query, 0.0), end = positions_at(query, 1.0);
+    // The whole step's Bernstein coefficients: their ends are D at t = 0 and 1, and the first piece reuses them.
+    const std::array<Interval, 4> bernstein = bernstein_of_d(start, end);
+    if (!undecidable_end(query.kind, start, bernstein[0]) && !undecidable_end(query.kind, end, bernstein[3])) {
+      Search search{query, 1.0};
+      const PieceOutcome outcome = search_exact_contact(search, 0.0, 1.0, start, end, 0, &bernstein);
+      if (outcome == PieceOutcome::Clear) return CcdResult{};
+      if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
+    }
   }
   if (const std::optional<exact::ExactAnswer> answer = detail::expansion_collision(query))
     return answer->hit ? make_hit(query, answer->toi, CcdState::Hit) : CcdResult{};
