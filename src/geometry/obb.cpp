@@ -26,10 +26,27 @@
 namespace clothcd::geometry {
 namespace {
 
+// Loops the compiler vectorises, several times faster than Eigen's allFinite and minCoeff/maxCoeff here (which would
+// otherwise be a large part of a covariance box's time): x * 0 is NaN exactly when x is not finite, and NaN survives
+// every sum (four partial sums, so that they need no reordering to run in parallel).
 void check_input(const TriangleMesh& mesh, const char* where) {
   if (mesh.vertex_count() == 0) throw std::invalid_argument(std::string(where) + ": the mesh has no vertices");
-  if (!mesh.vertices.allFinite()) throw std::invalid_argument(std::string(where) + ": non-finite coordinate");
-  if (mesh.face_count() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertex_count()))
+  const double* const x = mesh.vertices.data();
+  const Eigen::Index count = mesh.vertices.size();
+  double zero[4] = {0, 0, 0, 0};
+  Eigen::Index i = 0;
+  for (; i + 4 <= count; i += 4)
+    for (int k = 0; k < 4; ++k) zero[k] += x[i + k] * 0.0;
+  for (; i < count; ++i) zero[0] += x[i] * 0.0;
+  if (!(zero[0] + zero[1] + zero[2] + zero[3] == 0.0))
+    throw std::invalid_argument(std::string(where) + ": non-finite coordinate");
+  const int* const corner = mesh.faces.data();
+  int lowest = 0, highest = 0;
+  for (Eigen::Index j = 0; j < mesh.faces.size(); ++j) {
+    lowest = std::min(lowest, corner[j]);
+    highest = std::max(highest, corner[j]);
+  }
+  if (lowest < 0 || highest >= mesh.vertex_count())
     throw std::invalid_argument(std::string(where) + ": face index out of range");
 }
 

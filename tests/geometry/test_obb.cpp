@@ -2,6 +2,7 @@
 // simplified-model box bounds the ORIGINAL model at every pose, exact answers on boxes, calipers against brute force.
 #include <catch2/catch.hpp>
 
+#include <limits>
 #include <random>
 
 #include "clothcd/geometry/mesh_volume.hpp"
@@ -85,6 +86,23 @@ TEST_CASE("Every OBB method bounds degenerate point sets", "[geometry][obb]") {
     TriangleMesh bad = make_box();
     bad.vertices(3, 1) = std::nan("");
     CHECK_THROWS_AS(compute_obb(bad, ObbMethod::Tight), std::invalid_argument);
+    // Every position of the checks' partial sums and their tail, infinities of both signs, and face indices.
+    const TriangleMesh soup = test::random_soup(7, 3);  // 21 coordinates: five groups of four and a tail of one
+    for (Eigen::Index k = 0; k < soup.vertices.size(); ++k) {
+      for (double value : {std::nan(""), std::numeric_limits<double>::infinity(),
+                           -std::numeric_limits<double>::infinity()}) {
+        TriangleMesh broken = soup;
+        broken.vertices.data()[k] = value;
+        CHECK_THROWS_AS(compute_obb(broken, ObbMethod::Covariance), std::invalid_argument);
+        CHECK_THROWS_AS(SimplifiedObb(broken), std::invalid_argument);
+      }
+    }
+    for (int index : {-1, 7, 1 << 30}) {
+      TriangleMesh broken = soup;
+      broken.faces(6, 2) = index;
+      CHECK_THROWS_AS(compute_obb(broken, ObbMethod::Covariance), std::invalid_argument);
+    }
+    CHECK_NOTHROW(compute_obb(soup, ObbMethod::Covariance));
   }
 }
 
