@@ -217,7 +217,13 @@ int Expansion::bottom_exponent() const {
 
 Expansion Expansion::times_power_of_two(int k) const {
   Expansion r = *this;
-  for (std::size_t i = 0; i < size_; ++i) r.terms_[i] = std::ldexp(terms_[i], k);
+  if (k >= -1022 && k <= 1023) {
+    // 2^k is a normal double: the product is x 2^k correctly rounded, as ldexp gives it (no library call per term).
+    const double factor = std::ldexp(1.0, k);
+    for (std::size_t i = 0; i < size_; ++i) r.terms_[i] = terms_[i] * factor;
+  } else {
+    for (std::size_t i = 0; i < size_; ++i) r.terms_[i] = std::ldexp(terms_[i], k);
+  }
   return r;
 }
 

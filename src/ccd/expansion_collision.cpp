@@ -199,7 +199,10 @@ int sign_variations(const BernsteinSigns& signs) {
 
 // base + offset rounded to the time grid.
 Expansion grid_point(const Expansion& base, double offset) {
-  return base + Expansion(std::ldexp(std::nearbyint(std::ldexp(offset, kTimeBits)), -kTimeBits));
+  // Scaling by the constant powers of two is exact here (like ldexp): offset 2^150 at worst overflows to infinity as
+  // ldexp would, and the rounded integer times 2^-150 is 0 or a normal double.
+  static_assert(kTimeBits == 150, "the scale factors below are 2^kTimeBits and 2^-kTimeBits");
+  return base + Expansion(std::nearbyint(offset * 0x1p150) * 0x1p-150);
 }
 
 bool strictly_between(const Expansion& lo, const Expansion& t, const Expansion& hi) {
