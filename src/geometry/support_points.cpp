@@ -37,8 +37,8 @@ void split(std::vector<Eigen::Vector3d>& points, int begin, int end, int group_s
 
 #if defined(CLOTHCD_GEOMETRY_AVX2)
 
-// {min, max} of x[i] dx + y[i] dy + z[i] dz over i < count (a multiple of 4), four points at a time, each product summed
-// in the order of Eigen's dot product of the point with the direction, so the values are those of a scan.
+// {min, max} of x[i] dx + y[i] dy + z[i] dz over i < count (a multiple of 4), four points at a time, each product
+// summed in the order of Eigen's dot product of the point with the direction, so the values are those of a scan.
 __attribute__((target("avx2"))) std::pair<double, double> scan_min_max(const double* x, const double* y,
                                                                        const double* z, size_t count,
                                                                        const Eigen::Vector3d& direction) {
@@ -47,7 +47,8 @@ __attribute__((target("avx2"))) std::pair<double, double> scan_min_max(const dou
   __m256d lo = _mm256_set1_pd(std::numeric_limits<double>::infinity());
   __m256d hi = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < count; i += 4) {
-    const __m256d xy = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(x + i), dx), _mm256_mul_pd(_mm256_loadu_pd(y + i), dy));
+    const __m256d xy =
+        _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(x + i), dx), _mm256_mul_pd(_mm256_loadu_pd(y + i), dy));
     const __m256d dot = _mm256_add_pd(xy, _mm256_mul_pd(_mm256_loadu_pd(z + i), dz));
     lo = _mm256_min_pd(lo, dot);
     hi = _mm256_max_pd(hi, dot);
