@@ -239,3 +239,47 @@ TEST_CASE("thickness: a pair far apart at the start is cleared from it only when
   CHECK(hits >= 4);
   CHECK(separated >= 6);
 }
+
+TEST_CASE("thickness: pairs side by side about h apart are never missed", "[ccd][thickness][differential]") {
+  // A cloth resting flat: a vertex beside a triangle edge, or an edge beside another, in (nearly) one plane at a
+  // sideways gap of 0.3 h to 2 h, tilted a little and moving a little (most of the pairs a resting cloth sends to the
+  // search are side by side like this). Every pair the brute-force distance puts within h must be reported.
+  Random random(11u);
+  const double h = 0.004;
+  ccd::CcdSettings settings;
+  settings.thickness = h;
+  int within = 0, separated = 0;
+  for (int i = 0; i < 400; ++i) {
+    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    const Vector3d u = random.vector(1.0).normalized();
+    const Vector3d v = u.unitOrthogonal();
+    const Vector3d w = u.cross(v);  // the plane's normal
+    const Vector3d origin = random.vector(1.0);
+    const double gap = h * random.uniform(0.3, 2.0), size = 0.02;
+    std::array<Vector3d, 4> start;
+    if (kind == PairKind::VertexFace) {
+      // Triangle edge along u through the origin, the triangle on the -v side, the vertex on the +v side.
+      start = {origin + random.uniform(-0.5, 0.5) * size * u + gap * v + random.uniform(-0.5, 0.5) * gap * w,
+               origin - 0.5 * size * u, origin + 0.5 * size * u,
+               origin - size * v + random.uniform(-0.2, 0.2) * size * w};
+    } else {
+      const Vector3d tilt = random.uniform(-0.3, 0.3) * u + random.uniform(-0.3, 0.3) * w;
+      start = {origin + gap * v - 0.5 * size * u, origin + gap * v + 0.5 * size * (u + tilt), origin - 0.5 * size * u,
+               origin + 0.5 * size * u};
+      start[0] += random.uniform(0.0, 1.0) * size * v;  // sometimes splayed apart
+    }
+    std::array<Vector3d, 4> end = start;
+    for (Vector3d& p : end) p += random.vector(0.2 * h);
+    const ccd::CcdQuery query = make_query(kind, start, end);
+    const ccd::CcdResult result = ccd::continuous_collision(query, settings);
+    const double distance = reference_min_distance(query);
+    INFO("pair " << i << " distance / h " << distance / h);
+    if (distance <= h) {
+      CHECK(result.hit);
+      ++within;
+    }
+    separated += result.hit ? 0 : 1;
+  }
+  CHECK(within > 40);
+  CHECK(separated > 100);
+}
