@@ -6,6 +6,7 @@
 #include "clothcd/broadphase/packed_boxes.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace clothcd::broadphase {
@@ -19,7 +20,7 @@ constexpr float kBelowLargeBound = 9e37f;
 inline float round_down(double x) {
   const double magnitude = std::fabs(x);
   if (magnitude < kLargeBound) return static_cast<float>(x - (magnitude * 0x1p-22 + 1e-30));
-  return x > 0.0 ? kBelowLargeBound : -kInfinity;  // NaN also lands here: with round_up's answer, an empty box
+  return x > 0.0 ? kBelowLargeBound : -kInfinity;  // NaN also lands here: with round_up's, an unbounded box
 }
 
 inline float round_up(double x) {
@@ -27,6 +28,44 @@ inline float round_up(double x) {
   if (magnitude < kLargeBound) return static_cast<float>(x + (magnitude * 0x1p-22 + 1e-30));
   return x < 0.0 ? -kBelowLargeBound : kInfinity;
 }
+
+#if defined(CLOTHCD_WIDE_LANES)
+// Four bounds x[0..3] rounded outwards (kUpper: up, else down) into out[0..3]: round_up/round_down with selects
+// instead of branches, bit for bit the same floats.
+template <bool kUpper>
+void round_four(const double* x, float* out) {
+  using Doubles4 = double __attribute__((vector_size(32)));
+  using Floats4 = float __attribute__((vector_size(16)));
+  constexpr double kInfinityDouble = std::numeric_limits<double>::infinity();
+  constexpr double kBelowLarge = kBelowLargeBound;  // exact in double; converts back to kBelowLargeBound
+  Doubles4 v;
+  std::memcpy(&v, x, sizeof v);
+  const Doubles4 magnitude = v < 0.0 ? -v : v;
+  const Doubles4 step = magnitude * 0x1p-22 + 1e-30;
+  const Doubles4 moved = kUpper ? v + step : v - step;
+  const Doubles4 large = kUpper ? (v < 0.0 ? Doubles4{} - kBelowLarge : Doubles4{} + kInfinityDouble)
+                                : (v > 0.0 ? Doubles4{} + kBelowLarge : Doubles4{} - kInfinityDouble);
+  // Only the lanes below 1e38 convert a moved value (and NaN takes `large`, like the scalar versions).
+  const Floats4 rounded = __builtin_convertvector(magnitude < kLargeBound ? moved : large, Floats4);
+  std::memcpy(out, &rounded, sizeof rounded);
+}
+
+// The six rows of boxes [0, n) four boxes at a time with AVX2 (rows of `stride` floats from `r`); returns how many
+// boxes it wrote (a multiple of four).
+__attribute__((target("avx2"), flatten)) int round_rows_avx2(const FlatBox* boxes, int n, float* r, int stride) {
+  int j = 0;
+  for (; j + 4 <= n; j += 4) {
+    const FlatBox* b = boxes + j;
+    for (int k = 0; k < 3; ++k) {
+      const double lower[4] = {b[0].min[k], b[1].min[k], b[2].min[k], b[3].min[k]};
+      const double upper[4] = {b[0].max[k], b[1].max[k], b[2].max[k], b[3].max[k]};
+      round_four<false>(lower, r + k * stride + j);
+      round_four<true>(upper, r + (3 + k) * stride + j);
+    }
+  }
+  return j;
+}
+#endif
 
 }  // namespace
 
@@ -53,7 +92,11 @@ void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
   stride_ = size_ + kPackedPadding;
   rows_.resize(6 * static_cast<std::size_t>(stride_));
   float* r = rows_.data();
-  for (int j = 0; j < size_; ++j) {
+  int j = 0;
+#if defined(CLOTHCD_WIDE_LANES)
+  if (wide_lanes_supported()) j = round_rows_avx2(boxes.data(), size_, r, stride_);
+#endif
+  for (; j < size_; ++j) {
     const FlatBox& b = boxes[j];
     for (int k = 0; k < 3; ++k) {
       r[k * stride_ + j] = round_down(b.min[k]);

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -70,6 +71,30 @@ TEST_CASE("packed boxes contain the double boxes at every magnitude", "[broadpha
     for (int k = 0; k < 3; ++k) {
       REQUIRE(static_cast<double>(p.lo[k]) <= x);
       REQUIRE(static_cast<double>(p.hi[k]) >= x);
+    }
+  }
+}
+
+TEST_CASE("packed rows (four boxes at a time where AVX2 runs) hold exactly pack_box's floats", "[broadphase][packed]") {
+  std::mt19937_64 rng(53);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> special{0.0, -0.0, inf, -inf, nan, 1e38, -1e38, 9.99999e37, -9.99999e37, 1e39, -1e39,
+                                    std::numeric_limits<double>::denorm_min(), -1e-300, 1e-30, -1e-30};
+  for (const int count : {1, 3, 4, 5, 8, 13, 1001}) {
+    std::vector<FlatBox> boxes(count);
+    for (FlatBox& b : boxes) {
+      for (int k = 0; k < 3; ++k) {
+        const bool pick_special = rng() % 4 == 0;
+        b.min[k] = pick_special ? special[rng() % special.size()] : random_double(rng, -1074, 1023);
+        b.max[k] = pick_special ? special[rng() % special.size()] : random_double(rng, -40, 40);
+      }
+    }
+    PackedBoxes packed;
+    packed.assign(boxes);
+    for (int j = 0; j < count; ++j) {
+      const clothcd::broadphase::PackedBox row = packed.at(j), single = pack_box(boxes[j]);
+      REQUIRE(std::memcmp(&row, &single, sizeof row) == 0);
     }
   }
 }
