@@ -148,6 +148,17 @@ Expansion Expansion::difference(double a, double b) {
   return r;
 }
 
+// sum_into reads e and f completely (into the merge buffer, or two locals) before it writes h, so h may be either.
+Expansion& Expansion::operator+=(const Expansion& b) {
+  sum_into(*this, b, 1.0, *this);
+  return *this;
+}
+
+Expansion& Expansion::operator-=(const Expansion& b) {
+  sum_into(*this, b, -1.0, *this);
+  return *this;
+}
+
 Expansion operator+(const Expansion& a, const Expansion& b) {
   Expansion r;
   sum_into(a, b, 1.0, r);
@@ -190,7 +201,7 @@ Expansion operator*(const Expansion& a, const Expansion& b) {
   if (shorter.size_ == 0) return Expansion();
   Expansion r = longer.scaled(shorter.terms_[0]);
   for (std::size_t i = 1; i < shorter.size_; ++i) {
-    r = r + longer.scaled(shorter.terms_[i]);
+    r += longer.scaled(shorter.terms_[i]);
     if (r.size_ > Expansion::kCapacity / 2) r = r.compressed();  // keeps the partial sums within the capacity
   }
   return shorter.size_ > 1 ? r.compressed() : r;

@@ -33,6 +33,10 @@ class Expansion {
   /// Exact a - b.
   [[nodiscard]] static Expansion difference(double a, double b);
 
+  /// Exact *this + b in place (b may be *this).
+  Expansion& operator+=(const Expansion& b);
+  /// Exact *this - b in place (b may be *this).
+  Expansion& operator-=(const Expansion& b);
   friend Expansion operator+(const Expansion& a, const Expansion& b);
   friend Expansion operator-(const Expansion& a, const Expansion& b);
   friend Expansion operator*(const Expansion& a, const Expansion& b);

@@ -81,8 +81,8 @@ struct Poly {
 Poly operator+(const Poly& p, const Poly& q) {
   Poly r(std::max(p.size(), q.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < p.size()) r[i] = r[i] + p[i];
-    if (i < q.size()) r[i] = r[i] + q[i];
+    if (i < p.size()) r[i] += p[i];
+    if (i < q.size()) r[i] += q[i];
   }
   return r;
 }
@@ -90,8 +90,8 @@ Poly operator+(const Poly& p, const Poly& q) {
 Poly operator-(const Poly& p, const Poly& q) {
   Poly r(std::max(p.size(), q.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < p.size()) r[i] = r[i] + p[i];
-    if (i < q.size()) r[i] = r[i] - q[i];
+    if (i < p.size()) r[i] += p[i];
+    if (i < q.size()) r[i] -= q[i];
   }
   return r;
 }
@@ -100,7 +100,7 @@ Poly operator*(const Poly& p, const Poly& q) {
   if (p.empty() || q.empty()) return {};
   Poly r(p.size() + q.size() - 1);
   for (std::size_t i = 0; i < p.size(); ++i)
-    for (std::size_t j = 0; j < q.size(); ++j) r[i + j] = r[i + j] + p[i] * q[j];
+    for (std::size_t j = 0; j < q.size(); ++j) r[i + j] += p[i] * q[j];
   return r;
 }
 
@@ -114,7 +114,7 @@ Expansion evaluate(const Poly& p, const Expansion& t) {
   Expansion r;
   if (t.is_double(0.0)) return p.empty() ? r : p[0];
   if (t.is_double(1.0)) {  // the sum of the coefficients, no products
-    for (std::size_t i = 0; i < p.size(); ++i) r = r + p[i];
+    for (std::size_t i = 0; i < p.size(); ++i) r += p[i];
     return r;
   }
   for (std::size_t i = p.size(); i-- > 0;) r = r * t + p[i];

@@ -126,6 +126,16 @@ TEST_CASE("expansion arithmetic is exact", "[ccd][expansion]") {
     const mpq_class exact = exact_value(a) * exact_value(b) * exact_value(c) - exact_value(d);
     CHECK(value.sign() == sgn(exact));
     CHECK(value.estimate() == Approx(exact.get_d()).epsilon(1e-15));
+    // In place, also with the operand itself: the same exact values.
+    Expansion in_place = value;
+    in_place += zero + ea * eb;
+    CHECK((in_place - (value + ea * eb)).is_zero());
+    in_place -= ea * eb;
+    CHECK((in_place - value).is_zero());
+    in_place += in_place;
+    CHECK((in_place - value.scaled(2.0)).is_zero());
+    in_place -= in_place;
+    CHECK(in_place.is_zero());
   }
 }
 
