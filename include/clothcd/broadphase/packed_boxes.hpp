@@ -51,6 +51,17 @@ template <class Vector, class Value>
   std::memcpy(&v, p, sizeof v);
   return v;
 }
+
+#if defined(CLOTHCD_WIDE_LANES)
+/// Eight consecutive values from `p` (any alignment) as one vector `Vector`. AVX2 only.
+template <class Vector, class Value>
+[[nodiscard]] CLOTHCD_AVX2 inline Vector load_eight_lanes(const Value* p) {
+  static_assert(sizeof(Vector) == 8 * sizeof(Value), "eight lanes");
+  Vector v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+#endif
 }  // namespace packed_detail
 
 /// One box in single precision, each bound rounded outwards (it contains the FlatBox it was made from).
@@ -104,11 +115,7 @@ class PackedBoxes {
   static Floats load(const float* p) { return packed_detail::load_lanes<Floats>(p); }
 #if defined(CLOTHCD_WIDE_LANES)
   using Floats8 = float __attribute__((vector_size(32)));
-  CLOTHCD_AVX2 static Floats8 load8(const float* p) {
-    Floats8 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
+  CLOTHCD_AVX2 static Floats8 load8(const float* p) { return packed_detail::load_eight_lanes<Floats8>(p); }
 #endif
 
   std::vector<float> rows_;
@@ -152,11 +159,7 @@ class PackedVertexIds {
  private:
 #if defined(CLOTHCD_WIDE_LANES)
   using Ints8 = int __attribute__((vector_size(32)));
-  CLOTHCD_AVX2 static Ints8 load8(const int* p) {
-    Ints8 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  }
+  CLOTHCD_AVX2 static Ints8 load8(const int* p) { return packed_detail::load_eight_lanes<Ints8>(p); }
   CLOTHCD_AVX2 static unsigned bits8(Ints8 lanes) {
     return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(lanes)));
   }
