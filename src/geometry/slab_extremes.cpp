@@ -21,24 +21,28 @@ struct Slabs {
   int count;
   Eigen::Vector3d lo, inv_width;
 
-  Slabs(const Vertices& points, int slabs) : count(std::clamp(slabs, 1, kMaxSlabs)) {
-    // A plain loop over the rows: Eigen's column-wise reductions of a row-major matrix are several times slower.
-    double low[3] = {0, 0, 0}, high[3] = {0, 0, 0};
-    if (points.rows() > 0) std::copy_n(points.data(), 3, low), std::copy_n(points.data(), 3, high);
-    for (Eigen::Index i = 1; i < points.rows(); ++i) {
-      const double* p = points.data() + 3 * i;
-      for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
-    }
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = low[a];
-      inv_width[a] = high[a] > low[a] ? count / (high[a] - low[a]) : 0.0;
-    }
+  // From the smallest and largest coordinates.
+  Slabs(const Eigen::Vector3d& low, const Eigen::Vector3d& high, int slabs)
+      : count(std::clamp(slabs, 1, kMaxSlabs)), lo(low) {
+    for (int a = 0; a < 3; ++a) inv_width[a] = high[a] > low[a] ? count / (high[a] - low[a]) : 0.0;
   }
 
   [[nodiscard]] int of(const double* p, int a) const {
     return std::min(count - 1, static_cast<int>((p[a] - lo[a]) * inv_width[a]));
   }
 };
+
+// The smallest and largest coordinates of `points` (zero when there are none). A plain loop over the rows: Eigen's
+// column-wise reductions of a row-major matrix are several times slower.
+void bounds(const Vertices& points, Eigen::Vector3d& low, Eigen::Vector3d& high) {
+  low.setZero();
+  high.setZero();
+  if (points.rows() > 0) low = high = Eigen::Vector3d(points(0, 0), points(0, 1), points(0, 2));
+  for (Eigen::Index i = 1; i < points.rows(); ++i) {
+    const double* p = points.data() + 3 * i;
+    for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
+  }
+}
 
 double squared_distance(const double* p, const Eigen::Vector3d& centre) {
   return (Eigen::Vector3d(p[0], p[1], p[2]) - centre).squaredNorm();
@@ -54,6 +58,25 @@ struct alignas(32) SlabBest {
   double far[2];
   double far_row[2];
 };
+
+// bounds() with a row in one register (the fourth lane unused); min(p, low) is exactly std::min(low, p), and so on.
+__attribute__((target("avx2"))) void bounds_avx2(const Vertices& points, Eigen::Vector3d& low, Eigen::Vector3d& high) {
+  low.setZero();
+  high.setZero();
+  if (points.rows() == 0) return;
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+  __m256d lo = _mm256_maskload_pd(points.data(), xyz), hi = lo;
+  for (Eigen::Index i = 1; i < points.rows(); ++i) {
+    const __m256d p = _mm256_maskload_pd(points.data() + 3 * i, xyz);
+    lo = _mm256_min_pd(p, lo);
+    hi = _mm256_max_pd(p, hi);
+  }
+  double l[4], h[4];
+  _mm256_storeu_pd(l, lo);
+  _mm256_storeu_pd(h, hi);
+  low = Eigen::Vector3d(l[0], l[1], l[2]);
+  high = Eigen::Vector3d(h[0], h[1], h[2]);
+}
 
 // Updates `slab` (of axis a) by the point p (row `row`, distance `far` from the centre).
 __attribute__((target("avx2"), always_inline)) inline void take_better(SlabBest& slab, const double* p, int a,
@@ -77,7 +100,10 @@ __attribute__((target("avx2"), always_inline)) inline void take_better(SlabBest&
 // the block's updates, so the updates' addresses are known early (else each load of a running best may wait for, or
 // be replayed after, the stores of the point before, which often hit the same slab).
 __attribute__((target("avx2"))) void slab_extremes_avx2(const Vertices& points, const Eigen::Vector3d& centre,
-                                                        const Slabs& cut, int* rows) {
+                                                        int slabs, int* rows) {
+  Eigen::Vector3d low, high;
+  bounds_avx2(points, low, high);
+  const Slabs cut(low, high, slabs);
   const int slab_count = 3 * cut.count;
   std::array<SlabBest, 3 * kMaxSlabs> best;
   const double never = -std::numeric_limits<double>::infinity();
@@ -122,7 +148,9 @@ __attribute__((target("avx2"))) void slab_extremes_avx2(const Vertices& points, 
 }  // namespace
 
 void slab_extremes_reference(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
-  const Slabs cut(points, slabs);
+  Eigen::Vector3d low, high;
+  bounds(points, low, high);
+  const Slabs cut(low, high, slabs);
   const int entries = 3 * cut.count * kSlabValues;
   std::array<double, 3 * kMaxSlabs * kSlabValues> score;
   std::fill_n(score.begin(), entries, -std::numeric_limits<double>::infinity());
@@ -146,7 +174,7 @@ void slab_extremes_reference(const Vertices& points, const Eigen::Vector3d& cent
 
 void slab_extremes(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
 #if defined(CLOTHCD_GEOMETRY_AVX2)
-  if (avx2_available()) return slab_extremes_avx2(points, centre, Slabs(points, slabs), rows);
+  if (avx2_available()) return slab_extremes_avx2(points, centre, slabs, rows);
 #endif
   slab_extremes_reference(points, centre, slabs, rows);
 }

@@ -99,6 +99,11 @@ TEST_CASE("Slab extremes on degenerate points: ties, flat axes, repeats", "[geom
   for (int i = 0; i < 50; ++i) line(i, 0) = i % 7;
   check(line, Eigen::Vector3d::Zero());
   check(Vertices::Constant(33, 3, -2.5), Eigen::Vector3d::Zero());  // every point the same
+  Vertices zeros(40, 3);  // +0 and -0: equal coordinates of different signs
+  for (int i = 0; i < 40; ++i) zeros.row(i) << (i % 2 ? -0.0 : 0.0), (i % 3 ? 0.0 : -0.0), cell(random) * 0.0;
+  check(zeros, Eigen::Vector3d::Zero());
+  zeros(17, 0) = 1.0;
+  check(zeros, Eigen::Vector3d::Zero());
   Vertices repeated(100, 3);
   for (int i = 0; i < 100; ++i) repeated.row(i) = grid.row(i % 10);
   check(repeated, Eigen::Vector3d::Ones());
