@@ -5,7 +5,8 @@
 // point-segment distance. Taking the minimum over all these candidates needs no case analysis that degenerates, and
 // point-segment distances (clamped projection) are well conditioned. The interior candidate is only formed when the
 // primitive is far from degenerate (sine above 1e-8), so its error stays a small multiple of the unit roundoff / 1e-8
-// times the pair's extent; the thickness test covers that with its margin.
+// times the pair's extent; the thickness test covers that with its margin. When the interior candidate lies on both
+// primitives it is the minimum, and the boundary is skipped.
 #include "ccd/closest_points.hpp"
 
 #include <algorithm>
@@ -55,6 +56,21 @@ struct Nearest {
 
 ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
                                      const Eigen::Vector3d& t2) {
+  // The interior candidate first: when p projects inside the triangle, the plane distance is the minimum (every
+  // boundary point is at least that far), and the boundary candidates are not needed.
+  const Eigen::Vector3d e1 = t1 - t0;
+  const Eigen::Vector3d e2 = t2 - t0;
+  const Eigen::Vector3d n = e1.cross(e2);
+  const double n2 = n.squaredNorm();
+  if (n2 > kMinSineSquared * e1.squaredNorm() * e2.squaredNorm()) {
+    const Eigen::Vector3d r = p - t0;
+    // Barycentric weights of the projection from the sub-triangle areas (Cramer's rule with cross products).
+    const double w1 = r.cross(e2).dot(n) / n2;
+    const double w2 = e1.cross(r).dot(n) / n2;
+    if (w1 >= 0.0 && w2 >= 0.0 && w1 + w2 <= 1.0) {
+      return {std::abs(r.dot(n)) / std::sqrt(n2), {w1, w2}, p, t0 + w1 * e1 + w2 * e2};
+    }
+  }
   Nearest nearest(p, t0);
   const double s01 = segment_parameter(p, t0, t1);
   nearest.keep_closer(p, t0 + s01 * (t1 - t0), {s01, 0.0});
@@ -62,28 +78,27 @@ ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vect
   nearest.keep_closer(p, t0 + s02 * (t2 - t0), {0.0, s02});
   const double s12 = segment_parameter(p, t1, t2);
   nearest.keep_closer(p, t1 + s12 * (t2 - t1), {1.0 - s12, s12});
-  ClosestPoints best = nearest.finish();
-  const Eigen::Vector3d e1 = t1 - t0;
-  const Eigen::Vector3d e2 = t2 - t0;
-  const Eigen::Vector3d n = e1.cross(e2);
-  const double n2 = n.squaredNorm();
-  if (!(n2 > kMinSineSquared * e1.squaredNorm() * e2.squaredNorm())) return best;
-  const Eigen::Vector3d r = p - t0;
-  // Barycentric weights of the projection from the sub-triangle areas (Cramer's rule with cross products).
-  const double w1 = r.cross(e2).dot(n) / n2;
-  const double w2 = e1.cross(r).dot(n) / n2;
-  if (w1 < 0.0 || w2 < 0.0 || w1 + w2 > 1.0) return best;
-  const Eigen::Vector3d q = t0 + w1 * e1 + w2 * e2;
-  const double plane_distance = std::abs(r.dot(n)) / std::sqrt(n2);
-  if (plane_distance < best.distance) best = {plane_distance, {w1, w2}, p, q};
-  return best;
+  return nearest.finish();
 }
 
 ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
                                       const Eigen::Vector3d& b1) {
-  Nearest nearest(a0, b0);
   const Eigen::Vector3d da = a1 - a0;
   const Eigen::Vector3d db = b1 - b0;
+  // The interior candidate first: when the common perpendicular of the two lines meets both segments, its length is
+  // the minimum, and the endpoint candidates are not needed.
+  const Eigen::Vector3d n = da.cross(db);
+  const double n2 = n.squaredNorm();
+  if (n2 > kMinSineSquared * da.squaredNorm() * db.squaredNorm()) {
+    const Eigen::Vector3d r = b0 - a0;
+    // s and u from the cross-product form of the 2x2 normal equations.
+    const double s = r.cross(db).dot(n) / n2;
+    const double u = r.cross(da).dot(n) / n2;
+    if (s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0) {
+      return {std::abs(r.dot(n)) / std::sqrt(n2), {s, u}, a0 + s * da, b0 + u * db};
+    }
+  }
+  Nearest nearest(a0, b0);
   const double u0 = segment_parameter(a0, b0, b1);
   nearest.keep_closer(a0, b0 + u0 * db, {0.0, u0});
   const double u1 = segment_parameter(a1, b0, b1);
@@ -92,19 +107,7 @@ ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Ve
   nearest.keep_closer(a0 + s0 * da, b0, {s0, 0.0});
   const double s1 = segment_parameter(b1, a0, a1);
   nearest.keep_closer(a0 + s1 * da, b1, {s1, 1.0});
-  ClosestPoints best = nearest.finish();
-  const double aa = da.squaredNorm(), bb = db.squaredNorm();
-  const Eigen::Vector3d n = da.cross(db);
-  const double n2 = n.squaredNorm();
-  if (!(n2 > kMinSineSquared * aa * bb)) return best;
-  const Eigen::Vector3d r = b0 - a0;
-  // Common perpendicular of the two lines: s and u from the cross-product form of the 2x2 normal equations.
-  const double s = r.cross(db).dot(n) / n2;
-  const double u = r.cross(da).dot(n) / n2;
-  if (s < 0.0 || s > 1.0 || u < 0.0 || u > 1.0) return best;
-  const double line_distance = std::abs(r.dot(n)) / std::sqrt(n2);
-  if (line_distance < best.distance) best = {line_distance, {s, u}, a0 + s * da, b0 + u * db};
-  return best;
+  return nearest.finish();
 }
 
 }  // namespace clothcd::ccd::detail
