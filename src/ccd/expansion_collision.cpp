@@ -34,7 +34,6 @@
 #include <array>
 #include <climits>
 #include <cmath>
-#include <deque>
 #include <initializer_list>
 #include <optional>
 #include <vector>
@@ -551,6 +550,7 @@ class System {
       for (int i = 0; i < 2; ++i)
         for (int j = 2; j < 4; ++j) add(i, j);
     }
+    store_.reserve(static_cast<std::size_t>(3 * points_ * points_ + 3));
   }
   // Exact signs of the 2D cross (a < b) and dot products of W[a], W[b] in the projection dropping axis k at the
   // step's start (end = 0) or end (end = 1), from those positions directly (no polynomial built or evaluated).
@@ -604,14 +604,14 @@ class System {
   const Poly& cross(int k, int a, int b) {
     const Poly*& p = cross_[k][a][b];
     const int u = (k + 1) % 3, v = (k + 2) % 3;
-    if (!p) p = &store_.emplace_back(w_[a][u] * w_[b][v] - w_[a][v] * w_[b][u]);
+    if (!p) p = keep(w_[a][u] * w_[b][v] - w_[a][v] * w_[b][u]);
     return *p;
   }
   // a <= b.
   const Poly& dot(int k, int a, int b) {
     const Poly*& p = dot_[k][a][b];
     const int u = (k + 1) % 3, v = (k + 2) % 3;
-    if (!p) p = &store_.emplace_back(w_[a][u] * w_[b][u] + w_[a][v] * w_[b][v]);
+    if (!p) p = keep(w_[a][u] * w_[b][u] + w_[a][v] * w_[b][v]);
     return *p;
   }
   // The k-th component of the normal (W[1] - W[0]) x (W[2] - W[0]) of W's plane: cross(0, 1) + cross(1, 2) +
@@ -620,7 +620,7 @@ class System {
   // W form a parallelogram, so no three of them are collinear).
   const Poly& normal(int k) {
     const Poly*& p = normal_[k];
-    if (!p) p = &store_.emplace_back(cross(k, 0, 1) + cross(k, 1, 2) - cross(k, 0, 2));
+    if (!p) p = keep(cross(k, 0, 1) + cross(k, 1, 2) - cross(k, 0, 2));
     return *p;
   }
 
@@ -637,7 +637,13 @@ class System {
 
   std::array<std::array<double, 3>, 8> c_;     // the scaled coordinates: start points, then end points
   std::array<std::array<int, 2>, 4> pairs_{};  // W[m] = x[pairs_[m][0]] - x[pairs_[m][1]]
-  std::deque<Poly> store_;  // the polynomials built so far (a deque: their addresses stay valid)
+  // The polynomials built so far, at most 3 n^2 + 3 for n points of W (cross and dot products in three projections,
+  // three normal components): reserved at once, so one allocation and their addresses stay valid.
+  std::vector<Poly> store_;
+  const Poly* keep(const Poly& p) {
+    if (store_.size() == store_.capacity()) throw ExpansionCapacityExceeded();  // cannot happen; never reallocate
+    return &store_.emplace_back(p);
+  }
   const Poly* cross_[3][4][4] = {};
   const Poly* dot_[3][4][4] = {};
   const Poly* normal_[3] = {};
