@@ -714,7 +714,7 @@ class Predicate {
                                          : candidate_.lo.estimate();
     const std::array<int, 3> axes =
         only_axis_ >= 0 ? std::array<int, 3>{only_axis_, only_axis_, only_axis_} : system_.axes_by_normal(t);
-    const int axis_count = only_axis_ >= 0 || normal_sign(axes[0]) != 0 ? 1 : 3;
+    const int axis_count = only_axis_ >= 0 ? 1 : 3;
     for (int i = 0; i < axis_count && result && !strictly; ++i) {
       const int k = axes[static_cast<std::size_t>(i)];
       bool inside = false;
@@ -723,6 +723,9 @@ class Predicate {
           for (int c = b + 1; c < system_.points() && !inside; ++c)
             inside = triangle_contains_origin(k, a, b, c, strictly);
       result = inside;
+      // On a boundary in the best projection: it decides alone when its normal component is not zero (asked only
+      // now: an exclusion or a strict inside ends the scan anyway).
+      if (i == 0 && result && !strictly && only_axis_ < 0 && normal_sign(k) != 0) break;
     }
     if (failed_) return std::nullopt;
     return result;
