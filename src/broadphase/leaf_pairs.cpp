@@ -56,7 +56,7 @@ struct FourLanes {
   }
 };
 
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
 // The eight-lane tests (AVX2, BMI2), as bits.
 struct EightLanes {
   static constexpr int kWidth = 8;
@@ -288,7 +288,7 @@ void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* move
       });
 }
 
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
 // The eight-lane instantiations, compiled for AVX2 with every call inlined into them (so that no function compiled
 // for the default target passes AVX2 vectors, and no AVX2 code leaks into shared inline functions).
 __attribute__((target("avx2,bmi2"), flatten)) void between_wide(const BodyView& a, const BodyView& b, int na, int nb,
@@ -308,7 +308,7 @@ __attribute__((target("avx2,bmi2"), flatten)) void within_wide(const BodyView& b
 
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
                        CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   if (scratch.wide_lanes) return between_wide(a, b, na, nb, moved, out, stats, scratch);
 #endif
   between_lanes<FourLanes>(a, b, na, nb, moved, out, stats, scratch);
@@ -316,7 +316,7 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
 
 void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
                       TraversalStats& stats, LeafScratch& scratch) {
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   if (scratch.wide_lanes) return within_wide(body, na, nb, moved, out, stats, scratch);
 #endif
   within_lanes<FourLanes>(body, na, nb, moved, out, stats, scratch);

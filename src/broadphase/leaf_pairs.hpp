@@ -15,7 +15,7 @@ namespace clothcd::broadphase::detail {
 
 /// Lists of one search task, reused from leaf pair to leaf pair.
 struct LeafScratch {
-  bool wide_lanes = false;    ///< Test eight primitives at a time (only where wide_lanes_supported())
+  bool wide_lanes = false;    ///< Test eight primitives at a time (only where avx2_supported())
   std::vector<int> selected;  ///< Primitives of one leaf whose box overlaps the other leaf's box
   std::vector<int> hits;      ///< Primitives of the other leaf that pass every test against one selected primitive
 };

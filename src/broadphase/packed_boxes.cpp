@@ -29,7 +29,7 @@ inline float round_up(double x) {
   return x < 0.0 ? -kBelowLargeBound : kInfinity;
 }
 
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
 // Four bounds x[0..3] rounded outwards (kUpper: up, else down) into out[0..3]: round_up/round_down with selects
 // instead of branches, bit for bit the same floats.
 template <bool kUpper>
@@ -69,15 +69,6 @@ __attribute__((target("avx2"), flatten)) int round_rows_avx2(const FlatBox* boxe
 
 }  // namespace
 
-bool wide_lanes_supported() {
-#if defined(CLOTHCD_WIDE_LANES)
-  static const bool supported = __builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("bmi2") != 0;
-  return supported;
-#else
-  return false;
-#endif
-}
-
 PackedBox pack_box(const FlatBox& box) {
   PackedBox p;
   for (int k = 0; k < 3; ++k) {
@@ -93,8 +84,8 @@ void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
   rows_.resize(6 * static_cast<std::size_t>(stride_));
   float* r = rows_.data();
   int j = 0;
-#if defined(CLOTHCD_WIDE_LANES)
-  if (wide_lanes_supported()) j = round_rows_avx2(boxes.data(), size_, r, stride_);
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (avx2_supported()) j = round_rows_avx2(boxes.data(), size_, r, stride_);
 #endif
   for (; j < size_; ++j) {
     const FlatBox& b = boxes[j];

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "broadphase/leaf_pairs.hpp"
-#include "clothcd/broadphase/packed_boxes.hpp"
+#include "clothcd/cpu_features.hpp"
 
 namespace clothcd::broadphase {
 namespace {
@@ -173,7 +173,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
   auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
     std::vector<Task> stack{first};
     detail::LeafScratch scratch;
-    scratch.wide_lanes = settings.wide_lanes && wide_lanes_supported();
+    scratch.wide_lanes = settings.wide_lanes && avx2_supported();
     while (!stack.empty()) {
       const Task task = stack.back();
       stack.pop_back();

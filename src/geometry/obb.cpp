@@ -15,11 +15,11 @@
 
 #include "clothcd/geometry/convex_hull.hpp"
 #include "clothcd/geometry/simplify.hpp"
-#include "cpu_features.hpp"
+#include "clothcd/cpu_features.hpp"
 #include "min_area_rectangle.hpp"
 #include "slab_extremes.hpp"
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 #include <immintrin.h>
 #endif
 
@@ -131,7 +131,7 @@ Eigen::Vector3d area_weighted_centre(const Vertices& v, const Faces& faces) {
 // row.
 using FaceMoments = std::array<double, 9>;
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 // sum_moments four entries at a time: every entry summed in the same order.
 __attribute__((target("avx2"))) FaceMoments sum_moments_avx2(const FaceMoments* moments, const int* faces,
                                                              size_t count) {
@@ -153,8 +153,8 @@ __attribute__((target("avx2"))) FaceMoments sum_moments_avx2(const FaceMoments* 
 
 // The sum of moments[faces[j]] over j < count, entry by entry.
 FaceMoments sum_moments(const FaceMoments* moments, const int* faces, size_t count) {
-#if defined(CLOTHCD_GEOMETRY_AVX2)
-  if (detail::avx2_available()) return sum_moments_avx2(moments, faces, count);
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (avx2_supported()) return sum_moments_avx2(moments, faces, count);
 #endif
   FaceMoments total{};
   for (size_t j = 0; j < count; ++j)
@@ -284,7 +284,7 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   return refine_axes(scratch.kept, axes, scratch);
 }
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 // Row p moved: the three coordinates in one register (the fourth lane unused), with move_rows's products and sums.
 __attribute__((target("avx2"), always_inline)) inline __m256d moved_row(const double* p, __m256d c0, __m256d c1,
                                                                           __m256d c2, __m256d shift) {
@@ -316,8 +316,8 @@ void move_rows(const Vertices& rest, const Eigen::Isometry3d& pose, Vertices& mo
   const Eigen::Vector3d t = pose.translation();
   const double* from = rest.data();
   double* to = moved.data();
-#if defined(CLOTHCD_GEOMETRY_AVX2)
-  if (detail::avx2_available()) return move_rows_avx2(from, rest.rows(), r, t, to);
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (avx2_supported()) return move_rows_avx2(from, rest.rows(), r, t, to);
 #endif
   for (Eigen::Index i = 0; i < rest.rows(); ++i, from += 3, to += 3) {
     for (int k = 0; k < 3; ++k) to[k] = r(k, 0) * from[0] + (r(k, 1) * from[1] + r(k, 2) * from[2]) + t[k];

@@ -7,9 +7,9 @@
 #include <array>
 #include <limits>
 
-#include "cpu_features.hpp"
+#include "clothcd/cpu_features.hpp"
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 #include <immintrin.h>
 #endif
 
@@ -48,7 +48,7 @@ double squared_distance(const double* p, const Eigen::Vector3d& centre) {
   return (Eigen::Vector3d(p[0], p[1], p[2]) - centre).squaredNorm();
 }
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 
 // Per slab: the running best of {p[b], p[c], -p[b], -p[c]} and of the distance from the centre (lane 1 unused, never
 // beaten), with their rows as doubles (exact) so that one comparison mask selects value and row together.
@@ -173,8 +173,8 @@ void slab_extremes_reference(const Vertices& points, const Eigen::Vector3d& cent
 }
 
 void slab_extremes(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
-#if defined(CLOTHCD_GEOMETRY_AVX2)
-  if (avx2_available()) return slab_extremes_avx2(points, centre, slabs, rows);
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (avx2_supported()) return slab_extremes_avx2(points, centre, slabs, rows);
 #endif
   slab_extremes_reference(points, centre, slabs, rows);
 }

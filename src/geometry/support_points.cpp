@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "cpu_features.hpp"
+#include "clothcd/cpu_features.hpp"
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 #include <immintrin.h>
 #endif
 
@@ -35,7 +35,7 @@ void split(std::vector<Eigen::Vector3d>& points, int begin, int end, int group_s
   split(points, middle, end, group_size, starts);
 }
 
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
 
 // {min, max} of x[i] dx + y[i] dy + z[i] dz over i < count (a multiple of 4), four points at a time, each product
 // summed in the order of Eigen's dot product of the point with the direction, so the values are those of a scan.
@@ -86,7 +86,7 @@ SupportPoints::SupportPoints(const Vertices& points, int group_size) {
     radius_.push_back(radius + 1e-9 * (centre.norm() + radius));
   }
   // Few points: a scan of them all, four at a time, costs less than the group bounds and the branches on them.
-  if (n <= kScanAll && detail::avx2_available()) {
+  if (n <= kScanAll && avx2_supported()) {
     scan_count_ = (size_t(n) + 3) / 4 * 4;
     coordinates_.resize(3 * scan_count_);
     for (size_t i = 0; i < scan_count_; ++i)  // padded with copies of the first point (min and max unchanged)
@@ -131,7 +131,7 @@ void SupportPoints::group_min_max(std::size_t g, const Eigen::Vector3d& directio
 }
 
 std::pair<double, double> SupportPoints::min_max_dot(const Eigen::Vector3d& direction) const {
-#if defined(CLOTHCD_GEOMETRY_AVX2)
+#if defined(CLOTHCD_AVX2_PATHS)
   if (scan_count_ > 0) {
     const double* x = coordinates_.data();
     return scan_min_max(x, x + scan_count_, x + 2 * scan_count_, scan_count_, direction);

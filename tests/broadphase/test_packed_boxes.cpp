@@ -18,17 +18,17 @@ using clothcd::broadphase::lane_bits;
 using clothcd::broadphase::pack_box;
 using clothcd::broadphase::PackedBoxes;
 using clothcd::broadphase::PackedVertexIds;
-using clothcd::broadphase::wide_lanes_supported;
+using clothcd::avx2_supported;
 
 // The lane widths this machine runs: 4, and 8 where the CPU has AVX2.
 std::vector<int> lane_widths() {
-  if (wide_lanes_supported()) return {4, 8};
+  if (avx2_supported()) return {4, 8};
   return {4};
 }
 
 // Bits of box j's group of `width` lanes overlapping `q`.
 unsigned overlap_bits(const PackedBoxes& packed, int width, int j, const clothcd::broadphase::PackedBox& q) {
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   if (width == 8) return packed.overlap_bits8(j, q);
 #endif
   (void)width;
@@ -37,7 +37,7 @@ unsigned overlap_bits(const PackedBoxes& packed, int width, int j, const clothcd
 
 // Bits of primitive j's group of `width` lanes using vertex v, or for edges (per = 2) v or w (per = 3: faces).
 unsigned uses_bits(const PackedVertexIds& packed, int per, int width, int j, int v, int w) {
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   if (width == 8) return per == 2 ? packed.edge_uses_bits8(j, v, w) : packed.face_uses_bits8(j, v);
 #endif
   (void)width;

@@ -4,27 +4,19 @@
 /// single-precision copies of swept boxes rounded outwards, and the primitives' vertex indices. The box copies only
 /// pre-select: a pair they pass is confirmed on the double-precision boxes, so results are those of the FlatBox tests
 /// exactly. The four-lane operations use the compiler's vector extension (SSE on x86-64, NEON on ARM); the eight-lane
-/// ones (x86-64 with GCC or Clang) are compiled for AVX2 and may only run where wide_lanes_supported() is true.
+/// ones (x86-64 with GCC or Clang) are compiled for AVX2 and may only run where avx2_supported() is true.
 
 #include <cstring>
 #include <vector>
 
 #include "clothcd/broadphase/swept_boxes.hpp"
+#include "clothcd/cpu_features.hpp"
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-/// Defined when the eight-lane (AVX2) operations are compiled in.
-#define CLOTHCD_WIDE_LANES 1
-#include <immintrin.h>
-/// Marks a function compiled for AVX2 and BMI2 (call it only where wide_lanes_supported() is true).
-#define CLOTHCD_AVX2 __attribute__((target("avx2,bmi2")))
-#elif defined(__SSE2__)
+#if !defined(CLOTHCD_AVX2_PATHS) && defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
 namespace clothcd::broadphase {
-
-/// Whether this CPU runs the eight-lane operations (AVX2 and BMI2 on x86-64); false where they are not compiled in.
-[[nodiscard]] bool wide_lanes_supported();
 
 /// Entries after the last primitive in every packed row (so that eight consecutive entries can be read from any valid
 /// position); padding boxes are empty and padding vertex indices are -1.
@@ -52,7 +44,7 @@ template <class Vector, class Value>
   return v;
 }
 
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
 /// Eight consecutive values from `p` (any alignment) as one vector `Vector`. AVX2 only.
 template <class Vector, class Value>
 [[nodiscard]] CLOTHCD_AVX2 inline Vector load_eight_lanes(const Value* p) {
@@ -99,7 +91,7 @@ class PackedBoxes {
            (load(r + s) <= q.hi[1]) & (q.lo[2] <= load(r + 5 * s)) & (load(r + 2 * s) <= q.hi[2]);
   }
 
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   /// overlap_lanes for boxes j .. j + 7, as bits (bit k for box j + k). AVX2 only.
   [[nodiscard]] CLOTHCD_AVX2 unsigned overlap_bits8(int j, const PackedBox& q) const {
     const float* r = rows_.data() + j;
@@ -113,7 +105,7 @@ class PackedBoxes {
  private:
   using Floats = float __attribute__((vector_size(16)));
   static Floats load(const float* p) { return packed_detail::load_lanes<Floats>(p); }
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   using Floats8 = float __attribute__((vector_size(32)));
   CLOTHCD_AVX2 static Floats8 load8(const float* p) { return packed_detail::load_eight_lanes<Floats8>(p); }
 #endif
@@ -142,7 +134,7 @@ class PackedVertexIds {
     return (load(r) == v) | (load(r + stride_) == v) | (load(r + 2 * stride_) == v);
   }
 
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   /// edge_uses_lanes for edges j .. j + 7, as bits (bit k for edge j + k). AVX2 only.
   [[nodiscard]] CLOTHCD_AVX2 unsigned edge_uses_bits8(int j, int v, int w) const {
     const Ints8 first = load8(rows_.data() + j), second = load8(rows_.data() + j + stride_);
@@ -157,7 +149,7 @@ class PackedVertexIds {
 #endif
 
  private:
-#if defined(CLOTHCD_WIDE_LANES)
+#if defined(CLOTHCD_AVX2_PATHS)
   using Ints8 = int __attribute__((vector_size(32)));
   CLOTHCD_AVX2 static Ints8 load8(const int* p) { return packed_detail::load_eight_lanes<Ints8>(p); }
   CLOTHCD_AVX2 static unsigned bits8(Ints8 lanes) {

@@ -32,7 +32,7 @@ struct TraversalSettings {
   /// pairs of the unrestricted search that involve a moved vertex of that body are returned, and subtrees without one
   /// are skipped. Must stay valid during the call; its size must be that body's vertex count.
   const std::vector<std::uint8_t>* moved_vertices = nullptr;
-  /// Test leaf primitives eight at a time where the CPU has AVX2 (wide_lanes_supported()), else four at a time. The
+  /// Test leaf primitives eight at a time where the CPU has AVX2 (clothcd::avx2_supported()), else four at a time. The
   /// result is the same either way.
   bool wide_lanes = true;
 };
