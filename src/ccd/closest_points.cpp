@@ -52,6 +52,26 @@ struct Nearest {
   }
 };
 
+// r in the plane spanned by u and v (normal n = u x v): the coordinates (x, y) of its projection, r = x u + y v + z n,
+// from Cramer's rule with cross products, and its height |r . n| / |n| above the plane. False when u and v are nearly
+// parallel (sine at most 1e-8) or zero.
+struct PlaneCoordinates {
+  double x = 0.0;
+  double y = 0.0;
+  double height = 0.0;
+};
+
+bool plane_coordinates(const Eigen::Vector3d& u, const Eigen::Vector3d& v, const Eigen::Vector3d& r,
+                       PlaneCoordinates& out) {
+  const Eigen::Vector3d n = u.cross(v);
+  const double n2 = n.squaredNorm();
+  if (!(n2 > kMinSineSquared * u.squaredNorm() * v.squaredNorm())) return false;
+  out.x = r.cross(v).dot(n) / n2;
+  out.y = u.cross(r).dot(n) / n2;
+  out.height = std::abs(r.dot(n)) / std::sqrt(n2);
+  return true;
+}
+
 }  // namespace
 
 ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
@@ -60,16 +80,9 @@ ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vect
   // boundary point is at least that far), and the boundary candidates are not needed.
   const Eigen::Vector3d e1 = t1 - t0;
   const Eigen::Vector3d e2 = t2 - t0;
-  const Eigen::Vector3d n = e1.cross(e2);
-  const double n2 = n.squaredNorm();
-  if (n2 > kMinSineSquared * e1.squaredNorm() * e2.squaredNorm()) {
-    const Eigen::Vector3d r = p - t0;
-    // Barycentric weights of the projection from the sub-triangle areas (Cramer's rule with cross products).
-    const double w1 = r.cross(e2).dot(n) / n2;
-    const double w2 = e1.cross(r).dot(n) / n2;
-    if (w1 >= 0.0 && w2 >= 0.0 && w1 + w2 <= 1.0) {
-      return {std::abs(r.dot(n)) / std::sqrt(n2), {w1, w2}, p, t0 + w1 * e1 + w2 * e2};
-    }
+  PlaneCoordinates w;  // barycentric weights of the projection
+  if (plane_coordinates(e1, e2, p - t0, w) && w.x >= 0.0 && w.y >= 0.0 && w.x + w.y <= 1.0) {
+    return {w.height, {w.x, w.y}, p, t0 + w.x * e1 + w.y * e2};
   }
   Nearest nearest(p, t0);
   const double s01 = segment_parameter(p, t0, t1);
@@ -87,16 +100,11 @@ ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Ve
   const Eigen::Vector3d db = b1 - b0;
   // The interior candidate first: when the common perpendicular of the two lines meets both segments, its length is
   // the minimum, and the endpoint candidates are not needed.
-  const Eigen::Vector3d n = da.cross(db);
-  const double n2 = n.squaredNorm();
-  if (n2 > kMinSineSquared * da.squaredNorm() * db.squaredNorm()) {
-    const Eigen::Vector3d r = b0 - a0;
-    // s and u from the cross-product form of the 2x2 normal equations.
-    const double s = r.cross(db).dot(n) / n2;
-    const double u = r.cross(da).dot(n) / n2;
-    if (s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0) {
-      return {std::abs(r.dot(n)) / std::sqrt(n2), {s, u}, a0 + s * da, b0 + u * db};
-    }
+  // With b0 - a0 = s da - u db + z n, the perpendicular joins a0 + s da and b0 + u db.
+  PlaneCoordinates c;
+  if (plane_coordinates(da, db, b0 - a0, c)) {
+    const double s = c.x, u = -c.y;
+    if (s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0) return {c.height, {s, u}, a0 + s * da, b0 + u * db};
   }
   Nearest nearest(a0, b0);
   const double u0 = segment_parameter(a0, b0, b1);
