@@ -4,6 +4,9 @@
 #include <archive.h>
 #include <archive_entry.h>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
@@ -21,6 +24,29 @@ constexpr const char* kCgalArchive = "/usr/share/doc/libcgal-dev/data.tar.gz";
 constexpr const char* kArchivePrefix = "data.tar.gz:";
 constexpr const char* kCgalLicence = "CGAL data files, GPL-3+/LGPL-3+ (see /usr/share/doc/libcgal-dev/copyright)";
 
+/// A fresh path next to `target`, ending in the same file name, to write a model before renaming it into place.
+/// Concurrent fetches of one model (parallel test processes, say) each write their own file, and the rename replaces
+/// the target atomically, so no reader ever sees a partial file and no writer loses its file to another.
+fs::path partial_path(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  return target.parent_path() / (".part-" + std::to_string(getpid()) + "-" + std::to_string(counter++) + "-" +
+                                 target.filename().string());
+}
+
+/// Writes `target` through `write(path)` on a partial path, then renames it into place.
+template <class Write>
+void write_into_place(const fs::path& target, const Write& write) {
+  const fs::path partial = partial_path(target);
+  try {
+    write(partial);
+    fs::rename(partial, target);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw;
+  }
+}
+
 /// Extracts one member of a .tar.gz into `target`; false when the member is not in the archive.
 bool extract_member(const fs::path& archive_path, const std::string& member, const fs::path& target) {
   std::unique_ptr<archive, decltype(&archive_read_free)> reader(archive_read_new(), archive_read_free);
@@ -32,14 +58,14 @@ bool extract_member(const fs::path& archive_path, const std::string& member, con
   archive_entry* entry = nullptr;
   while (archive_read_next_header(reader.get(), &entry) == ARCHIVE_OK) {
     if (member != archive_entry_pathname(entry)) continue;
-    const fs::path partial = target.string() + ".part";
-    std::ofstream out(partial, std::ios::binary);
-    char buffer[1 << 16];
-    la_ssize_t got = 0;
-    while ((got = archive_read_data(reader.get(), buffer, sizeof buffer)) > 0) out.write(buffer, got);
-    out.close();
-    if (got < 0 || !out) throw std::runtime_error(archive_path.string() + ": cannot extract " + member);
-    fs::rename(partial, target);
+    write_into_place(target, [&](const fs::path& partial) {
+      std::ofstream out(partial, std::ios::binary);
+      char buffer[1 << 16];
+      la_ssize_t got = 0;
+      while ((got = archive_read_data(reader.get(), buffer, sizeof buffer)) > 0) out.write(buffer, got);
+      out.close();
+      if (got < 0 || !out) throw std::runtime_error(archive_path.string() + ": cannot extract " + member);
+    });
     return true;
   }
   return false;
@@ -47,7 +73,7 @@ bool extract_member(const fs::path& archive_path, const std::string& member, con
 
 void generate_into(const std::string& name, const fs::path& target) {
   if (name != "fish") throw std::logic_error("no generator for model " + name);
-  save_mesh(make_fish(), target);
+  write_into_place(target, [](const fs::path& partial) { save_mesh(make_fish(), partial); });
 }
 
 }  // namespace
@@ -111,7 +137,7 @@ fs::path fetch_model(const std::string& name, const fs::path& cache_dir) {
       throw std::runtime_error("model '" + name + "' needs the Debian package " + it->package + " (missing " +
                                it->origin + "); run scripts/install-deps.sh");
     }
-    fs::copy_file(it->origin, target);
+    write_into_place(target, [&](const fs::path& partial) { fs::copy_file(it->origin, partial); });
   }
   return target;
 }
