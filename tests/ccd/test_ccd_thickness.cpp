@@ -166,50 +166,76 @@ TEST_CASE("thickness: hits carry the closest-point parameters and normal", "[ccd
   CHECK((ee.normal - Vector3d(0, 0, 1)).norm() < 1e-9);
 }
 
+namespace {
+
+// Pairs within h and pairs reported separated, over the queries given to check_against_reference.
+struct ReferenceTally {
+  int within = 0;
+  int separated = 0;
+};
+
+// The thickness CCD on `query` against the brute-force distance: a pair that comes within h must be reported, and a
+// hit's time of impact must be a lower bound (every grid time before it is farther than h).
+void check_against_reference(const ccd::CcdQuery& query, const ccd::CcdSettings& settings, ReferenceTally& tally) {
+  const double h = settings.thickness;
+  const double distance = reference_min_distance(query);
+  const ccd::CcdResult result = ccd::continuous_collision(query, settings);
+  INFO("distance / h " << distance / h);
+  if (distance <= h) {
+    CHECK(result.hit);
+    ++tally.within;
+  }
+  tally.separated += result.hit ? 0 : 1;
+  if (result.hit) {
+    for (int k = 0; k * 1.0 / kTimes < result.toi; ++k) CHECK(grid_distance(query, k * 1.0 / kTimes) > h * (1 - 1e-9));
+  }
+}
+
+// Checks 400 pairs, vertex-face and edge-edge in turn, that make(kind, random, start, end) builds, against the
+// reference at thickness h.
+template <class Make>
+ReferenceTally check_generated_pairs(unsigned seed, double h, const Make& make) {
+  Random random(seed);
+  ccd::CcdSettings settings;
+  settings.thickness = h;
+  ReferenceTally tally;
+  for (int i = 0; i < 400; ++i) {
+    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    std::array<Vector3d, 4> start, end;
+    make(kind, random, start, end);
+    INFO("pair " << i);
+    check_against_reference(make_query(kind, start, end), settings, tally);
+  }
+  return tally;
+}
+
+}  // namespace
+
 TEST_CASE("thickness: pairs sliding past at about h are never missed", "[ccd][thickness][differential]") {
   // A vertex over a face, or an edge over an edge, moving far sideways while the gap changes little: the Lipschitz
   // bound cannot clear such a step, so the search relies on projections onto the gap direction, which must not drop
   // a pair that comes within h.
-  Random random(31u);
   const double h = 0.004;
-  ccd::CcdSettings settings;
-  settings.thickness = h;
-  int hits = 0, separated = 0;
-  for (int i = 0; i < 400; ++i) {
-    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
-    std::array<Vector3d, 4> start;
-    if (kind == PairKind::VertexFace) {
-      start = {Vector3d(0, 0, 0), Vector3d(-0.05, -0.05, 0), Vector3d(0.05, -0.05, 0), Vector3d(0, 0.05, 0)};
-    } else {
-      start = {Vector3d(-0.03, 0, 0), Vector3d(0.03, 0, 0), Vector3d(0, -0.03, 0), Vector3d(0, 0.03, 0)};
-    }
-    const double gap0 = random.uniform(0.5 * h, 1.6 * h), gap1 = random.uniform(0.5 * h, 1.6 * h);
-    const Vector3d slide(random.uniform(-0.04, 0.04), random.uniform(-0.04, 0.04), 0.0);
-    const Vector3d tilt = random.vector(0.002);
-    std::array<Vector3d, 4> end = start;
-    const int first_count = kind == PairKind::VertexFace ? 1 : 2;
-    for (int k = 0; k < first_count; ++k) {
-      start[k].z() += gap0;
-      end[k].z() += gap1;
-      end[k] += slide + (k == 0 ? tilt : Vector3d(-tilt));
-    }
-    const ccd::CcdQuery query = make_query(kind, start, end);
-    const double distance = reference_min_distance(query);
-    const ccd::CcdResult result = ccd::continuous_collision(query, settings);
-    if (distance <= h) {
-      INFO("query " << i << " distance " << distance);
-      CHECK(result.hit);
-      ++hits;
-    } else if (!result.hit) {
-      ++separated;
-    }
-    if (result.hit) {
-      for (int k = 0; k * 1.0 / kTimes < result.toi; ++k)
-        CHECK(grid_distance(query, k * 1.0 / kTimes) > h * (1 - 1e-9));
-    }
-  }
-  CHECK(hits > 50);
-  CHECK(separated > 50);
+  const ReferenceTally tally = check_generated_pairs(
+      31u, h, [h](PairKind kind, Random& random, std::array<Vector3d, 4>& start, std::array<Vector3d, 4>& end) {
+        if (kind == PairKind::VertexFace) {
+          start = {Vector3d(0, 0, 0), Vector3d(-0.05, -0.05, 0), Vector3d(0.05, -0.05, 0), Vector3d(0, 0.05, 0)};
+        } else {
+          start = {Vector3d(-0.03, 0, 0), Vector3d(0.03, 0, 0), Vector3d(0, -0.03, 0), Vector3d(0, 0.03, 0)};
+        }
+        const double gap0 = random.uniform(0.5 * h, 1.6 * h), gap1 = random.uniform(0.5 * h, 1.6 * h);
+        const Vector3d slide(random.uniform(-0.04, 0.04), random.uniform(-0.04, 0.04), 0.0);
+        const Vector3d tilt = random.vector(0.002);
+        end = start;
+        const int first_count = kind == PairKind::VertexFace ? 1 : 2;
+        for (int k = 0; k < first_count; ++k) {
+          start[k].z() += gap0;
+          end[k].z() += gap1;
+          end[k] += slide + (k == 0 ? tilt : Vector3d(-tilt));
+        }
+      });
+  CHECK(tally.within > 50);
+  CHECK(tally.separated > 50);
 }
 
 TEST_CASE("thickness: a pair far apart at the start is cleared from it only when it cannot come within h",
@@ -244,42 +270,28 @@ TEST_CASE("thickness: pairs side by side about h apart are never missed", "[ccd]
   // A cloth resting flat: a vertex beside a triangle edge, or an edge beside another, in (nearly) one plane at a
   // sideways gap of 0.3 h to 2 h, tilted a little and moving a little (most of the pairs a resting cloth sends to the
   // search are side by side like this). Every pair the brute-force distance puts within h must be reported.
-  Random random(11u);
   const double h = 0.004;
-  ccd::CcdSettings settings;
-  settings.thickness = h;
-  int within = 0, separated = 0;
-  for (int i = 0; i < 400; ++i) {
-    const PairKind kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
-    const Vector3d u = random.vector(1.0).normalized();
-    const Vector3d v = u.unitOrthogonal();
-    const Vector3d w = u.cross(v);  // the plane's normal
-    const Vector3d origin = random.vector(1.0);
-    const double gap = h * random.uniform(0.3, 2.0), size = 0.02;
-    std::array<Vector3d, 4> start;
-    if (kind == PairKind::VertexFace) {
-      // Triangle edge along u through the origin, the triangle on the -v side, the vertex on the +v side.
-      start = {origin + random.uniform(-0.5, 0.5) * size * u + gap * v + random.uniform(-0.5, 0.5) * gap * w,
-               origin - 0.5 * size * u, origin + 0.5 * size * u,
-               origin - size * v + random.uniform(-0.2, 0.2) * size * w};
-    } else {
-      const Vector3d tilt = random.uniform(-0.3, 0.3) * u + random.uniform(-0.3, 0.3) * w;
-      start = {origin + gap * v - 0.5 * size * u, origin + gap * v + 0.5 * size * (u + tilt), origin - 0.5 * size * u,
-               origin + 0.5 * size * u};
-      start[0] += random.uniform(0.0, 1.0) * size * v;  // sometimes splayed apart
-    }
-    std::array<Vector3d, 4> end = start;
-    for (Vector3d& p : end) p += random.vector(0.2 * h);
-    const ccd::CcdQuery query = make_query(kind, start, end);
-    const ccd::CcdResult result = ccd::continuous_collision(query, settings);
-    const double distance = reference_min_distance(query);
-    INFO("pair " << i << " distance / h " << distance / h);
-    if (distance <= h) {
-      CHECK(result.hit);
-      ++within;
-    }
-    separated += result.hit ? 0 : 1;
-  }
-  CHECK(within > 40);
-  CHECK(separated > 100);
+  const ReferenceTally tally = check_generated_pairs(
+      11u, h, [h](PairKind kind, Random& random, std::array<Vector3d, 4>& start, std::array<Vector3d, 4>& end) {
+        const Vector3d u = random.vector(1.0).normalized();
+        const Vector3d v = u.unitOrthogonal();
+        const Vector3d w = u.cross(v);  // the plane's normal
+        const Vector3d origin = random.vector(1.0);
+        const double gap = h * random.uniform(0.3, 2.0), size = 0.02;
+        if (kind == PairKind::VertexFace) {
+          // Triangle edge along u through the origin, the triangle on the -v side, the vertex on the +v side.
+          start = {origin + random.uniform(-0.5, 0.5) * size * u + gap * v + random.uniform(-0.5, 0.5) * gap * w,
+                   origin - 0.5 * size * u, origin + 0.5 * size * u,
+                   origin - size * v + random.uniform(-0.2, 0.2) * size * w};
+        } else {
+          const Vector3d tilt = random.uniform(-0.3, 0.3) * u + random.uniform(-0.3, 0.3) * w;
+          start = {origin + gap * v - 0.5 * size * u, origin + gap * v + 0.5 * size * (u + tilt),
+                   origin - 0.5 * size * u, origin + 0.5 * size * u};
+          start[0] += random.uniform(0.0, 1.0) * size * v;  // sometimes splayed apart
+        }
+        end = start;
+        for (Vector3d& p : end) p += random.vector(0.2 * h);
+      });
+  CHECK(tally.within > 40);
+  CHECK(tally.separated > 100);
 }
