@@ -1,6 +1,7 @@
 // Seeded random and degenerate differential tests: the fast CCD and every filter against the exact rational reference.
 // Zero false negatives is the requirement; at thickness 0 the fast path must even agree exactly (it falls back to the
 // reference whenever floating point is unsure).
+#include <cmath>
 #include <random>
 
 #include "ccd/ccd_test_support.hpp"
@@ -157,6 +158,19 @@ TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference 
   QueryGenerator generator(kind == PairKind::VertexFace ? 77u : 78u);
   Tally tally;
   for (int i = 0; i < 150; ++i) check_against_reference(generator.degenerate_query(kind), tally);
+  CHECK(tally.reference_hits > tally.queries / 10);
+}
+
+TEST_CASE("queries scaled into the underflow range: fast CCD agrees with the reference", "[ccd][differential]") {
+  // Coordinates from 2^-340 down to 2^-560 make the interval tier's products underflow (or start subnormal): its bounds
+  // must still hold, and the exact tiers must take over where they cannot decide.
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 1701u : 1702u);
+  Tally tally;
+  for (int i = 0; i < 120; ++i) {
+    const ccd::CcdQuery query = i % 2 ? generator.random_query(kind) : generator.degenerate_query(kind);
+    check_against_reference(clothcd::test::scaled(query, std::ldexp(1.0, -(340 + 20 * (i % 12)))), tally);
+  }
   CHECK(tally.reference_hits > tally.queries / 10);
 }
 
