@@ -88,6 +88,10 @@ Row parse_row(const std::string& file, std::size_t line_number, const std::strin
       throw QueryFileError(file, line_number, "zero denominator in column " + std::to_string(2 * d + 2));
     mpq_class q(numerator, denominator);
     q.canonicalize();
+    if (abs(q) > mpq_class(std::numeric_limits<double>::max()))
+      throw QueryFileError(file, line_number,
+                           "the coordinate in columns " + std::to_string(2 * d + 1) + "-" + std::to_string(2 * d + 2) +
+                               " is beyond the range of doubles (magnitude above 1.8e308)");
     row.text[d] = {numerator.get_str(), denominator.get_str()};
     row.value[d] = nearest_double(q);
     row.exact = row.exact && mpq_class(row.value[d]) == q;

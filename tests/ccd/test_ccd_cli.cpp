@@ -48,6 +48,23 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
              Catch::StartsWith("{") && Catch::Contains("\"queries\": 2") && Catch::Contains("\"false_negatives\": 0"));
 }
 
+TEST_CASE("clothcd ccd decides queries with non-double coordinates on their exact values", "[ccd][cli]") {
+  // The vertex drops through the hypotenuse x + y = 1 of the unit triangle: x = 1/2 + 5 * 2^-56 rounds up to
+  // 1/2 + 2^-53 and y = 1/2 - 5 * 2^-56 rounds to 1/2 - 2^-54, so the rounded vertex passes just outside the triangle
+  // (x + y = 1 + 2^-54), while the exact one touches its edge.
+  const std::string xy = "36028797018963973,72057594037927936,36028797018963963,72057594037927936,";
+  const std::string face = "0,1,0,1,0,1,1\n1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n";
+  TempDir dir;
+  write_file(dir / "edge.csv", xy + "1,1,1\n" + face + xy + "-1,1,1\n" + face);
+  for (const std::string options : {"--filter combined", "--filter none", "--thickness 1e-30"}) {
+    INFO(options);
+    const auto run = run_cli("ccd '" + (dir / "edge.csv").string() + "' --type vf " + options);
+    REQUIRE(run.exit_code == 0);
+    CHECK_THAT(run.output, Catch::Contains("false negatives:       0"));
+    CHECK_THAT(run.output, Catch::Contains("inexact coordinates:   1"));
+  }
+}
+
 TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cli][errors]") {
   TempDir dir;
   write_file(dir / "bad.csv", "1,1,1,1,1\n");

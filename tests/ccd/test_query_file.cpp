@@ -74,6 +74,8 @@ TEST_CASE("malformed query files are errors naming the file and line", "[ccd][qu
   CHECK_THAT(error_of(path("rows.csv")), Catch::Contains("rows.csv") && Catch::Contains("not a multiple of 8"));
   write_file(path("truth.csv"), std::string(kQuery).replace(12, 1, "2"));
   CHECK_THAT(error_of(path("truth.csv")), Catch::Contains("truth.csv:1:") && Catch::Contains("0 or 1"));
+  write_file(path("range.csv"), std::string(kQuery).replace(0, 1, "1" + std::string(400, '0')));
+  CHECK_THAT(error_of(path("range.csv")), Catch::Contains("range.csv:1:") && Catch::Contains("beyond the range"));
   CHECK_THAT(error_of((dir / "missing.csv").string()), Catch::Contains("no such file"));
   // No --type and no vertex-face/edge-edge folder: the kind is unknown.
   write_file(dir / "plain.csv", kQuery);
