@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 
 namespace clothcd::simulation {
 namespace {
@@ -98,6 +100,12 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
     diagonal_.segment<3>(3 * spring.b) += block_diagonal;
   }
   filter_pinned(model, rhs_);
+  if (!std::isfinite(rhs_.squaredNorm()) || !std::isfinite(diagonal_.sum())) {
+    std::ostringstream message;
+    message << "implicit integration: the linear system is not finite (time step " << h
+            << " s too large for the cloth's stiffness and speeds?)";
+    throw std::runtime_error(message.str());
+  }
 
   dv_.setZero(3 * n);
   r_ = rhs_;

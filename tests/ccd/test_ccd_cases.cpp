@@ -96,6 +96,18 @@ TEST_CASE("tiny and huge coordinates behave like unit ones", "[ccd][vertex-face]
   }
 }
 
+TEST_CASE("thickness with coordinates beyond the fast range is a prompt conservative hit", "[ccd][thickness]") {
+  // At 2^200 the distances could overflow; the answer is a conservative hit at once (the exact path's rational root
+  // isolation could take minutes at these magnitudes and would only change the state label).
+  ccd::CcdSettings settings;
+  settings.thickness = 1.0;
+  const ccd::CcdResult result = ccd::continuous_collision(
+      scaled(vertex_past_triangle({0.25, 0.25, 1}, {0.25, 0.25, -1}), 0x1p200), settings);
+  CHECK(result.hit);
+  CHECK(result.state == ccd::CcdState::ConservativeHit);
+  CHECK(result.toi == 0.0);
+}
+
 TEST_CASE("crossing edges hit, edges passing beyond an end miss", "[ccd][edge-edge]") {
   // Edge b sweeps down through the x axis at t = 1/2 crossing it at the origin.
   const auto crossing =

@@ -81,3 +81,12 @@ TEST_CASE("a pinned cloth hangs without blowing up at a large step", "[simulatio
   CHECK(state.positions.col(1).minCoeff() < -0.5);  // and it did fall
   CHECK(state.velocities.cwiseAbs().maxCoeff() < 5.0);
 }
+
+TEST_CASE("a time step that overflows the implicit system is an error, not a frozen cloth", "[simulation][integrator][bad-input]") {
+  const ClothModel model = build_cloth_model(make_grid(5, 5));
+  const ClothState state = rest_state(model);
+  ImplicitIntegrator integrator;
+  Vertices v;
+  CHECK_THROWS_WITH(integrator.predict_velocities(model, state, 1e300, v), Catch::Contains("time step"));
+  CHECK_NOTHROW(integrator.predict_velocities(model, state, 1.0, v));
+}

@@ -33,6 +33,7 @@ class ImplicitIntegrator {
 
   /// Writes the end-of-step velocities (#V x 3) for positions and velocities `state` and step `dt` seconds (> 0) into
   /// `velocities`. Positions are not changed: the caller moves x1 = x0 + dt v1 and applies collision response.
+  /// Throws std::runtime_error when the system overflows (a time step far too large for the stiffness or speeds).
   IntegratorResult predict_velocities(const ClothModel& model, const ClothState& state, double dt,
                                       Vertices& velocities);
 
