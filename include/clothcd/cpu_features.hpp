@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The run-time choice of clothcd's AVX2 code paths. The library is compiled for the x86-64 baseline; functions marked
+/// The run-time choice of clothcd's AVX2 (and AVX-512) code paths. The library is compiled for the x86-64 baseline; functions marked
 /// CLOTHCD_AVX2 (or target("avx2")) run only where avx2_supported() is true, and give the same results as the
 /// baseline code beside them.
 
@@ -16,5 +16,9 @@ namespace clothcd {
 
 /// Whether this CPU runs the AVX2 paths (AVX2 and BMI2 on x86-64; false where they are not compiled in).
 [[nodiscard]] bool avx2_supported();
+
+/// Whether this CPU runs the AVX-512 paths (AVX-512F on x86-64, with AVX2 and BMI2; false where they are not compiled
+/// in).
+[[nodiscard]] bool avx512_supported();
 
 }  // namespace clothcd

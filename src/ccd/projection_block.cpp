@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "clothcd/cpu_features.hpp"
+
 namespace clothcd::ccd::detail {
 
 namespace {
@@ -106,17 +108,26 @@ template <bool VertexFace>
   for (int i = 0; i < b.count; ++i) out[i] = culled[i] > 0.0 && largest[i] <= kLargest ? 1 : 0;
 }
 
-// The two kinds, each compiled for AVX2 (four lanes per instruction) and for the baseline (two), chosen at load time
-// by the processor. Both run the same IEEE operations (no fused multiply-add), so they give the same verdicts.
-[[gnu::target_clones("avx2", "default")]] void filter_vertex_face(const QueryBlock& b, double thickness, bool normals,
-                                                                   std::uint8_t* out) {
-  filter_block<true>(b, thickness, normals, out);
-}
-
-[[gnu::target_clones("avx2", "default")]] void filter_edge_edge(const QueryBlock& b, double thickness, bool normals,
-                                                                 std::uint8_t* out) {
+// Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
+// the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
+void filter_baseline(const QueryBlock& b, double thickness, bool normals, std::uint8_t* out) {
+  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, normals, out);
   filter_block<false>(b, thickness, normals, out);
 }
+
+#if defined(CLOTHCD_AVX2_PATHS)
+__attribute__((target("avx2"))) void filter_avx2(const QueryBlock& b, double thickness, bool normals,
+                                                 std::uint8_t* out) {
+  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, normals, out);
+  filter_block<false>(b, thickness, normals, out);
+}
+
+__attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, double thickness, bool normals,
+                                                      std::uint8_t* out) {
+  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, normals, out);
+  filter_block<false>(b, thickness, normals, out);
+}
+#endif
 
 }  // namespace
 
@@ -146,24 +157,38 @@ void QueryBlock::pad_unused() {
         for (int lane = count; lane < kLanes; ++lane) x[t][k][c][lane] = x[t][k][c][0];
 }
 
+std::vector<BlockIsa> supported_block_isas() {
+  std::vector<BlockIsa> isas{BlockIsa::Baseline};
+  if (avx2_supported()) isas.push_back(BlockIsa::Avx2);
+  if (avx512_supported()) isas.push_back(BlockIsa::Avx512);
+  return isas;
+}
+
+BlockIsa fastest_block_isa() {
+  static const BlockIsa fastest = supported_block_isas().back();
+  return fastest;
+}
+
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
-                             const ProjectionFilterOptions& options, std::uint8_t* culled) {
-  if (block.kind == PairKind::VertexFace) {
-    filter_vertex_face(block, settings.thickness, options.use_primitive_normals, culled);
-  } else {
-    filter_edge_edge(block, settings.thickness, options.use_primitive_normals, culled);
-  }
+                             const ProjectionFilterOptions& options, std::uint8_t* culled, BlockIsa isa) {
+  const bool normals = options.use_primitive_normals;
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (isa == BlockIsa::Avx512) return filter_avx512(block, settings.thickness, normals, culled);
+  if (isa == BlockIsa::Avx2) return filter_avx2(block, settings.thickness, normals, culled);
+#endif
+  filter_baseline(block, settings.thickness, normals, culled);
 }
 
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,
-                               const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled) {
+                               const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled,
+                               BlockIsa isa) {
   culled.assign(queries.size(), 0);
   QueryBlock block;
   std::size_t first = 0;
   auto flush = [&]() {
     if (block.count == 0) return;
     block.pad_unused();
-    projection_filter_block(block, settings, options, culled.data() + first);
+    projection_filter_block(block, settings, options, culled.data() + first, isa);
     first += static_cast<std::size_t>(block.count);
     block.count = 0;
   };

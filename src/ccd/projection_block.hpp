@@ -24,17 +24,34 @@ struct QueryBlock {
   void pad_unused();
 };
 
+/// The instruction sets the block filter is compiled for. Every one runs the same IEEE operations in the same order
+/// (no fused multiply-add: the library is built as ISO C++, so no contraction), so all give the same verdicts.
+enum class BlockIsa {
+  Baseline,  ///< x86-64 baseline (two doubles per instruction), or the target's default elsewhere.
+  Avx2,      ///< AVX2: four doubles per instruction.
+  Avx512,    ///< AVX-512F: eight doubles per instruction.
+};
+
+/// The instruction sets this CPU runs, baseline first.
+[[nodiscard]] std::vector<BlockIsa> supported_block_isas();
+
+/// The widest instruction set this CPU runs (decided once).
+[[nodiscard]] BlockIsa fastest_block_isa();
+
 /// culled[i] = 1 for each lane i < block.count that the projection filter culls, 0 otherwise. The same test as
 /// projection_filter_culls(query, settings, options) with a coarser rounding bound (16 u |s|_1 max|coordinate| per
 /// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only
 /// when, along one direction s, every point of one primitive lies more than thickness |s| beyond every point of the
 /// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled.
+/// `isa` must be one of supported_block_isas().
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
-                             const ProjectionFilterOptions& options, std::uint8_t* culled);
+                             const ProjectionFilterOptions& options, std::uint8_t* culled,
+                             BlockIsa isa = fastest_block_isa());
 
 /// The block filter over a vector of queries of any kinds (blocks formed in order): culled[i] for queries[i]. For tests
 /// and benchmarks; the detector fills its blocks straight from the vertex arrays.
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,
-                               const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled);
+                               const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled,
+                               BlockIsa isa = fastest_block_isa());
 
 }  // namespace clothcd::ccd::detail

@@ -3,12 +3,14 @@
 // blocks of every fill, and never a culled pair that comes within the thickness.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
 #include "ccd/projection_block.hpp"
 #include "ccd/sampled_distance.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/cpu_features.hpp"
 
 namespace {
 
@@ -90,18 +92,22 @@ class PairMaker {
   std::mt19937 random_;
 };
 
-// The block verdicts equal the reference's on every query; returns how many were culled.
+// The block verdicts equal the reference's on every query, with every instruction set this CPU runs; returns how many
+// were culled.
 int check_same_verdicts(const std::vector<ccd::CcdQuery>& queries, double thickness, bool normals) {
   const ccd::CcdSettings settings{thickness};
   const ccd::ProjectionFilterOptions options{normals};
-  std::vector<std::uint8_t> culled;
-  ccd::detail::projection_filter_queries(queries, settings, options, culled);
-  REQUIRE(culled.size() == queries.size());
   int count = 0;
-  for (std::size_t i = 0; i < queries.size(); ++i) {
-    INFO("query " << i << " thickness " << thickness << " normals " << normals);
-    CHECK(static_cast<bool>(culled[i]) == ccd::projection_filter_culls(queries[i], settings, options));
-    count += culled[i];
+  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+    std::vector<std::uint8_t> culled;
+    ccd::detail::projection_filter_queries(queries, settings, options, culled, isa);
+    REQUIRE(culled.size() == queries.size());
+    count = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      INFO("query " << i << " thickness " << thickness << " normals " << normals << " isa " << static_cast<int>(isa));
+      CHECK(static_cast<bool>(culled[i]) == ccd::projection_filter_culls(queries[i], settings, options));
+      count += culled[i];
+    }
   }
   return count;
 }
@@ -136,6 +142,16 @@ TEST_CASE("block projection filter: the per-pair filter's verdicts on degenerate
   }
 }
 
+TEST_CASE("block projection filter: every instruction set this CPU runs is tested", "[ccd][filters]") {
+  const std::vector<ccd::detail::BlockIsa> isas = ccd::detail::supported_block_isas();
+  REQUIRE_FALSE(isas.empty());
+  CHECK(isas.front() == ccd::detail::BlockIsa::Baseline);
+  CHECK(isas.back() == ccd::detail::fastest_block_isa());
+  CHECK((std::find(isas.begin(), isas.end(), ccd::detail::BlockIsa::Avx2) != isas.end()) == clothcd::avx2_supported());
+  CHECK((std::find(isas.begin(), isas.end(), ccd::detail::BlockIsa::Avx512) != isas.end()) ==
+        clothcd::avx512_supported());
+}
+
 TEST_CASE("block projection filter: partly filled and mixed-kind blocks", "[ccd][filters]") {
   PairMaker maker(79);
   for (const int n : {1, 2, 15, 16, 17, 31, 33, 50}) {
@@ -157,18 +173,20 @@ TEST_CASE("block projection filter never drops a pair that comes within the thic
   for (int i = 0; i < 1500; ++i) {
     queries.push_back(maker.resting_pair(maker.kind(), thickness * maker.uniform(0.2, 1.5)));
   }
-  std::vector<std::uint8_t> culled;
-  ccd::detail::projection_filter_queries(queries, settings, ccd::ProjectionFilterOptions{true}, culled);
-  int within = 0;
-  for (std::size_t i = 0; i < queries.size(); ++i) {
-    INFO("query " << i);
-    if (culled[i]) CHECK(ccd::continuous_collision(queries[i], settings).state != ccd::CcdState::Hit);
-    if (i % 5 == 0 && clothcd::test::sampled_min_distance(queries[i], 20, 32) <= thickness) {
-      ++within;
-      CHECK_FALSE(culled[i]);
+  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+    std::vector<std::uint8_t> culled;
+    ccd::detail::projection_filter_queries(queries, settings, ccd::ProjectionFilterOptions{true}, culled, isa);
+    int within = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      INFO("query " << i << " isa " << static_cast<int>(isa));
+      if (culled[i]) CHECK(ccd::continuous_collision(queries[i], settings).state != ccd::CcdState::Hit);
+      if (i % 5 == 0 && clothcd::test::sampled_min_distance(queries[i], 20, 32) <= thickness) {
+        ++within;
+        CHECK_FALSE(culled[i]);
+      }
     }
+    CHECK(within > 50);
   }
-  CHECK(within > 50);
 }
 
 TEST_CASE("block projection filter keeps pairs with huge or tiny coordinates", "[ccd][filters]") {
@@ -186,15 +204,18 @@ TEST_CASE("block projection filter keeps pairs with huge or tiny coordinates", "
     huge.push_back(big);
     tiny.push_back(small);
   }
-  std::vector<std::uint8_t> culled;
-  ccd::detail::projection_filter_queries(huge, ccd::CcdSettings{0.0}, ccd::ProjectionFilterOptions{true}, culled);
-  for (const std::uint8_t c : culled) CHECK(c == 0);
-  ccd::detail::projection_filter_queries(tiny, ccd::CcdSettings{0.0}, ccd::ProjectionFilterOptions{true}, culled);
-  for (std::size_t i = 0; i < tiny.size(); ++i) {
-    // The fixed directions alone decide here, as the per-pair filter without normals does (or with them it culls more).
-    if (ccd::projection_filter_culls(tiny[i], ccd::CcdSettings{0.0})) CHECK(culled[i] == 1);
-    if (culled[i]) {
-      CHECK(ccd::projection_filter_culls(tiny[i], ccd::CcdSettings{0.0}, ccd::ProjectionFilterOptions{true}));
+  const ccd::ProjectionFilterOptions normals{true};
+  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+    INFO("isa " << static_cast<int>(isa));
+    std::vector<std::uint8_t> culled;
+    ccd::detail::projection_filter_queries(huge, ccd::CcdSettings{0.0}, normals, culled, isa);
+    for (const std::uint8_t c : culled) CHECK(c == 0);
+    ccd::detail::projection_filter_queries(tiny, ccd::CcdSettings{0.0}, normals, culled, isa);
+    for (std::size_t i = 0; i < tiny.size(); ++i) {
+      // The fixed directions alone decide here, as the per-pair filter without normals does (or with them it culls
+      // more).
+      if (ccd::projection_filter_culls(tiny[i], ccd::CcdSettings{0.0})) CHECK(culled[i] == 1);
+      if (culled[i]) CHECK(ccd::projection_filter_culls(tiny[i], ccd::CcdSettings{0.0}, normals));
     }
   }
 }
