@@ -14,11 +14,17 @@
 
 namespace clothcd {
 
-/// Whether this CPU runs the AVX2 paths (AVX2 and BMI2 on x86-64; false where they are not compiled in).
+/// Whether the AVX2 paths run: the CPU has AVX2 and BMI2 (x86-64), they are compiled in, and they are enabled (see
+/// set_wide_paths_enabled).
 [[nodiscard]] bool avx2_supported();
 
-/// Whether this CPU runs the AVX-512 paths (AVX-512F on x86-64, with AVX2 and BMI2; false where they are not compiled
-/// in).
+/// Whether the AVX-512 paths run: avx2_supported() and the CPU has AVX-512F.
 [[nodiscard]] bool avx512_supported();
+
+/// Turns the AVX2 and AVX-512 paths off (false) or back on where the CPU has them (true, the default) for the whole
+/// process. The baseline code then runs everywhere, with the same results (bit for bit, except sums that a wide path
+/// adds in another order). For tests that compare the paths on one machine, and for checking a result on the baseline.
+/// Call it while no other clothcd call runs; objects built while the paths were on (geometry::SupportPoints) keep them.
+void set_wide_paths_enabled(bool enabled);
 
 }  // namespace clothcd

@@ -165,8 +165,7 @@ std::vector<BlockIsa> supported_block_isas() {
 }
 
 BlockIsa fastest_block_isa() {
-  static const BlockIsa fastest = supported_block_isas().back();
-  return fastest;
+  return avx512_supported() ? BlockIsa::Avx512 : avx2_supported() ? BlockIsa::Avx2 : BlockIsa::Baseline;
 }
 
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,

@@ -35,7 +35,7 @@ enum class BlockIsa {
 /// The instruction sets this CPU runs, baseline first.
 [[nodiscard]] std::vector<BlockIsa> supported_block_isas();
 
-/// The widest instruction set this CPU runs (decided once).
+/// The widest instruction set this CPU runs.
 [[nodiscard]] BlockIsa fastest_block_isa();
 
 /// culled[i] = 1 for each lane i < block.count that the projection filter culls, 0 otherwise. The same test as
