@@ -1,10 +1,14 @@
-// Reader of the CCD benchmark's rational CSV query files (Wang et al. 2021). Integers are parsed with GMP (they exceed
-// 64 bits); each rational is rounded to the nearest double by comparing the neighbours of GMP's truncated value.
+// Reader of the CCD benchmark's rational CSV query files (Wang et al. 2021). Most coordinates are doubles written as
+// n / 2^k with |n| < 2^53: those are read with 64-bit integers and converted exactly. The others (integers beyond 64
+// bits, other denominators) are parsed with GMP and rounded to the nearest double by comparing the neighbours of GMP's
+// truncated value.
 #include "clothcd/ccd/query_file.hpp"
 
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -61,6 +65,30 @@ double nearest_double(const mpq_class& q) {
   return best;
 }
 
+// The integer in `text` (checked by is_integer) if it fits in 62 bits.
+std::optional<std::int64_t> small_integer(const std::string& text) {
+  const char* begin = text.data() + (text[0] == '+' ? 1 : 0);
+  const char* end = text.data() + text.size();
+  std::int64_t value = 0;
+  const auto [rest, error] = std::from_chars(begin, end, value);
+  if (error != std::errc() || rest != end || value > (std::int64_t{1} << 62) || value < -(std::int64_t{1} << 62))
+    return std::nullopt;
+  return value;
+}
+
+// numerator / denominator as a double when that is exact without GMP: |numerator| <= 2^53 and the denominator a
+// (signed) power of two up to 2^62, so the quotient is the numerator scaled by a power of two.
+std::optional<double> exact_dyadic(std::int64_t numerator, std::int64_t denominator) {
+  const std::uint64_t magnitude = static_cast<std::uint64_t>(denominator < 0 ? -denominator : denominator);
+  const std::uint64_t top = std::uint64_t{1} << 53;
+  const std::uint64_t size = static_cast<std::uint64_t>(numerator < 0 ? -numerator : numerator);
+  if (magnitude == 0 || (magnitude & (magnitude - 1)) != 0 || size > top) return std::nullopt;
+  int shift = 0;
+  while ((std::uint64_t{1} << shift) != magnitude) ++shift;
+  const double value = std::ldexp(static_cast<double>(numerator), -shift);
+  return denominator < 0 ? -value : value;
+}
+
 struct Row {
   std::array<RationalText, 3> text;
   Eigen::Vector3d value;
@@ -82,6 +110,15 @@ Row parse_row(const std::string& file, std::size_t line_number, const std::strin
   Row row;
   row.line = line_number;
   for (int d = 0; d < 3; ++d) {
+    const std::optional<std::int64_t> small_numerator = small_integer(columns[2 * d]);
+    const std::optional<std::int64_t> small_denominator = small_integer(columns[2 * d + 1]);
+    if (small_numerator && small_denominator) {
+      if (const std::optional<double> value = exact_dyadic(*small_numerator, *small_denominator)) {
+        row.text[d] = {std::to_string(*small_numerator), std::to_string(*small_denominator)};
+        row.value[d] = *value;
+        continue;
+      }
+    }
     const mpz_class numerator = parse_integer(columns[2 * d]);
     const mpz_class denominator = parse_integer(columns[2 * d + 1]);
     if (denominator == 0)

@@ -1,5 +1,12 @@
 // The benchmark CSV reader: exact big-integer rationals, kind from the folder, and clear errors naming file and line.
 #include <catch2/catch.hpp>
+#include <gmpxx.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "clothcd/ccd/query_file.hpp"
 #include "support/test_support.hpp"
@@ -56,6 +63,55 @@ TEST_CASE("big integers become exact rationals and the nearest double", "[ccd][q
   CHECK(records[0].query.start[0].y() == 1.0 / 3.0);
   CHECK_FALSE(records[0].exactly_representable);
   CHECK(records[0].truth == -1);
+}
+
+TEST_CASE("every coordinate is the nearest double of its rational, whichever way it is read", "[ccd][query-file]") {
+  // Small dyadic rationals take the 64-bit path, the rest GMP: the values, texts and exactness flags must not depend
+  // on which. Numerators and denominators of up to 22 digits, signs on either, powers of two and odd denominators.
+  std::mt19937_64 random(2026);
+  const std::vector<std::string> denominators{"1", "2", "-8", "1024", "4611686018427387904", "9223372036854775808",
+                                              "3", "-7", "1000", "36028797018963968", "+64"};
+  auto numerator = [&]() -> std::string {
+    switch (random() % 5) {
+      case 0: return std::to_string(static_cast<std::int64_t>(random() >> 11) - (std::int64_t{1} << 52));
+      case 1: return std::to_string(static_cast<std::int64_t>(random() >> 10));  // up to 2^54: beyond 53 bits
+      case 2: return "-" + std::to_string(random() >> 1);                         // up to 63 bits
+      case 3: return "+" + std::to_string(random() % 1000);
+      default: return std::to_string(random()) + std::to_string(random() % 1000);  // beyond 64 bits
+    }
+  };
+  // One query per drawn coordinate, at a random place among zeros, so that the query's exactness flag is its own.
+  TempDir dir;
+  std::string text;
+  std::vector<std::array<std::string, 2>> written;
+  std::vector<int> place;
+  for (int query = 0; query < 600; ++query) {
+    written.push_back({numerator(), denominators[random() % denominators.size()]});
+    place.push_back(static_cast<int>(random() % 24));
+    for (int c = 0; c < 24; ++c) {
+      text += c == place.back() ? written.back()[0] + "," + written.back()[1] : std::string("0,1");
+      text += c % 3 == 2 ? "\n" : ",";
+    }
+  }
+  const auto records = ccd::read_query_file(write_file(dir / "q.csv", text).string(), PairKind::VertexFace);
+  REQUIRE(records.size() == written.size());
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    const ccd::QueryRecord& record = records[k];
+    const auto& [n, m] = written[k];
+    const int i = place[k] / 3, d = place[k] % 3;
+    INFO(n << " / " << m);
+    mpq_class q{mpz_class{n[0] == '+' ? n.substr(1) : n}, mpz_class{m[0] == '+' ? m.substr(1) : m}};
+    q.canonicalize();
+    const double value = i < 4 ? record.query.start[i][d] : record.query.end[i - 4][d];
+    const mpq_class error = abs(mpq_class(value) - q);
+    CHECK(error <= abs(mpq_class(std::nextafter(value, HUGE_VAL)) - q));
+    CHECK(error <= abs(mpq_class(std::nextafter(value, -HUGE_VAL)) - q));
+    CHECK(record.exactly_representable == (error == 0));
+    const ccd::RationalText& t = record.rational[i][d];
+    mpq_class read{mpz_class{t[0]}, mpz_class{t[1]}};
+    read.canonicalize();
+    CHECK(read == q);
+  }
 }
 
 TEST_CASE("malformed query files are errors naming the file and line", "[ccd][query-file][errors]") {
