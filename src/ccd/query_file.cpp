@@ -193,18 +193,22 @@ std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<
   return records;
 }
 
-std::vector<QueryRecord> read_queries(const std::string& path, std::optional<PairKind> kind) {
+std::vector<std::string> query_files(const std::string& path) {
   std::error_code error;
   if (!fs::exists(path, error)) throw QueryFileError(path, 0, "no such file or folder");
-  if (!fs::is_directory(path, error)) return read_query_file(path, kind);
+  if (!fs::is_directory(path, error)) return {path};
   std::vector<std::string> files;
   for (const fs::directory_entry& entry :
        fs::recursive_directory_iterator(path, fs::directory_options::follow_directory_symlink))
     if (entry.is_regular_file() && entry.path().extension() == ".csv") files.push_back(entry.path().string());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw QueryFileError(path, 0, "folder holds no .csv query files");
+  return files;
+}
+
+std::vector<QueryRecord> read_queries(const std::string& path, std::optional<PairKind> kind) {
   std::vector<QueryRecord> records;
-  for (const std::string& file : files) {
+  for (const std::string& file : query_files(path)) {
     std::vector<QueryRecord> part = read_query_file(file, kind);
     records.insert(records.end(), std::make_move_iterator(part.begin()), std::make_move_iterator(part.end()));
   }

@@ -147,6 +147,43 @@ std::size_t redecide_inexact(const std::vector<ccd::QueryRecord>& records, const
   return redecided;
 }
 
+void add_network_stats(const NetworkCullingStats& part, NetworkCullingStats& total) {
+  total.dropped += part.dropped;
+  total.overruled += part.overruled;
+  total.checked += part.checked;
+  total.filter_culled += part.filter_culled;
+  total.kept += part.kept;
+  total.network_ms += part.network_ms;
+  total.filters_ms += part.filters_ms;
+}
+
+// Adds one file's queries and answers to the summary (and their lines to the per-query file when open).
+void add_to_summary(const std::vector<ccd::QueryRecord>& records, const std::vector<std::uint8_t>& keep,
+                    const std::vector<ccd::CcdResult>& results, const ccd::CcdSettings& settings, Summary& summary,
+                    std::ofstream& per_query) {
+  summary.queries += records.size();
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const ccd::QueryRecord& record = records[i];
+    const ccd::CcdResult& result = results[i];
+    summary.colliding += result.hit ? 1 : 0;
+    summary.conservative += result.state == ccd::CcdState::ConservativeHit ? 1 : 0;
+    summary.culled_selected += keep[i] ? 0 : 1;
+    summary.culled_nonpenetration += ccd::nonpenetration_filter_culls(record.query, settings) ? 1 : 0;
+    summary.culled_projection += ccd::projection_filter_culls(record.query, settings) ? 1 : 0;
+    summary.culled_combined += ccd::combined_filters_cull(record.query, settings) ? 1 : 0;
+    if (record.truth >= 0) {
+      ++summary.with_truth;
+      summary.truth_colliding += record.truth == 1 ? 1 : 0;
+      summary.false_positives += result.hit && record.truth == 0 ? 1 : 0;
+      summary.false_negatives += !result.hit && record.truth == 1 ? 1 : 0;
+    }
+    if (per_query.is_open())
+      per_query << record.file << ',' << record.line << ',' << (record.query.kind == PairKind::VertexFace ? "vf" : "ee")
+                << ',' << record.truth << ',' << (result.hit ? 1 : 0) << ',' << state_name(result.state) << ','
+                << result.toi << ',' << (keep[i] ? 0 : 1) << '\n';
+  }
+}
+
 ccd::CcdFilter parse_filter(const std::string& name) {
   static const std::map<std::string, ccd::CcdFilter> kFilters{{"none", ccd::CcdFilter::None},
                                                               {"nonpenetration", ccd::CcdFilter::NonPenetration},
@@ -172,56 +209,40 @@ void run_ccd(const CcdCommandOptions& options) {
   if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness))
     throw std::invalid_argument("--thickness must be a finite number >= 0");
 
-  const std::vector<ccd::QueryRecord> records = ccd::read_queries(options.path, kind);
-  std::vector<ccd::CcdQuery> queries;
-  queries.reserve(records.size());
-  for (const ccd::QueryRecord& record : records) queries.push_back(record.query);
-
   std::optional<NetworkCuller> culler;
   if (network) culler.emplace(options.model);
 
-  Summary summary;
-  summary.queries = queries.size();
-  summary.network = network;
-  std::vector<std::uint8_t> keep;
-  std::vector<ccd::CcdResult> results;
-  const auto begin = std::chrono::steady_clock::now();
-  if (culler)
-    summary.network_stats = culler->cull(queries, settings, false, keep);
-  else
-    ccd::filter_batch(queries, filter, settings, keep);
-  ccd::continuous_collision_batch(queries, keep, settings, results);
-  summary.inexact_coordinates = redecide_inexact(records, settings, keep, results);
-  const auto elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count();
-  summary.ns_per_query = queries.empty() ? 0.0 : elapsed / static_cast<double>(queries.size());
-
+  // Listed before the per-query file is created, which may lie in the same folder.
+  const std::vector<std::string> files = ccd::query_files(options.path);
   std::ofstream per_query;
   if (!options.per_query.empty()) {
     per_query.open(options.per_query);
     if (!per_query) throw std::runtime_error(options.per_query + ": cannot open for writing");
     per_query << "file,line,kind,truth,hit,state,toi,culled\n" << std::setprecision(17);
   }
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    const ccd::QueryRecord& record = records[i];
-    const ccd::CcdResult& result = results[i];
-    summary.colliding += result.hit ? 1 : 0;
-    summary.conservative += result.state == ccd::CcdState::ConservativeHit ? 1 : 0;
-    summary.culled_selected += keep[i] ? 0 : 1;
-    summary.culled_nonpenetration += ccd::nonpenetration_filter_culls(record.query, settings) ? 1 : 0;
-    summary.culled_projection += ccd::projection_filter_culls(record.query, settings) ? 1 : 0;
-    summary.culled_combined += ccd::combined_filters_cull(record.query, settings) ? 1 : 0;
-    if (record.truth >= 0) {
-      ++summary.with_truth;
-      summary.truth_colliding += record.truth == 1 ? 1 : 0;
-      summary.false_positives += result.hit && record.truth == 0 ? 1 : 0;
-      summary.false_negatives += !result.hit && record.truth == 1 ? 1 : 0;
-    }
-    if (per_query.is_open())
-      per_query << record.file << ',' << record.line << ',' << (record.query.kind == PairKind::VertexFace ? "vf" : "ee")
-                << ',' << record.truth << ',' << (result.hit ? 1 : 0) << ',' << state_name(result.state) << ','
-                << result.toi << ',' << (keep[i] ? 0 : 1) << '\n';
+  Summary summary;
+  summary.network = network;
+  double elapsed_ns = 0.0;
+  // One file at a time, so that memory stays that of the largest file however many files a folder holds.
+  for (const std::string& file : files) {
+    const std::vector<ccd::QueryRecord> records = ccd::read_query_file(file, kind);
+    std::vector<ccd::CcdQuery> queries;
+    queries.reserve(records.size());
+    for (const ccd::QueryRecord& record : records) queries.push_back(record.query);
+    std::vector<std::uint8_t> keep;
+    std::vector<ccd::CcdResult> results;
+    const auto begin = std::chrono::steady_clock::now();
+    if (culler)
+      add_network_stats(culler->cull(queries, settings, false, keep), summary.network_stats);
+    else
+      ccd::filter_batch(queries, filter, settings, keep);
+    ccd::continuous_collision_batch(queries, keep, settings, results);
+    summary.inexact_coordinates += redecide_inexact(records, settings, keep, results);
+    elapsed_ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count();
+    add_to_summary(records, keep, results, settings, summary, per_query);
+    if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
   }
-  if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
+  summary.ns_per_query = summary.queries == 0 ? 0.0 : elapsed_ns / static_cast<double>(summary.queries);
   print_summary(options, summary);
 }
 

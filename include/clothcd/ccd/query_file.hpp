@@ -46,7 +46,11 @@ struct QueryRecord {
 /// other than 0/1 or differing within a query, and a row count not divisible by 8.
 [[nodiscard]] std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind = {});
 
-/// Reads a CSV file, or every *.csv file under a folder (recursively, in sorted path order); kind as above.
+/// The query files at `path`: the path itself when it is a file, else every *.csv file under the folder (recursively,
+/// in sorted path order). Throws QueryFileError when the path does not exist or the folder holds no .csv file.
+[[nodiscard]] std::vector<std::string> query_files(const std::string& path);
+
+/// Reads a CSV file, or every *.csv file under a folder (query_files); kind as above.
 [[nodiscard]] std::vector<QueryRecord> read_queries(const std::string& path, std::optional<PairKind> kind = {});
 
 }  // namespace clothcd::ccd
