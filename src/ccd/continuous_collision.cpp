@@ -82,7 +82,7 @@ Positions positions_at(const CcdQuery& query, double t) {
       } else if (t == 1.0) {
         x[i].c[d] = detail::exact(e);
       } else {
-        x[i].c[d] = detail::exact(s) + detail::exact(t) * (detail::exact(e) - detail::exact(s));
+        x[i].c[d] = detail::exact(s) + detail::scaled(detail::exact(e) - detail::exact(s), t);
       }
     }
   }
@@ -212,14 +212,14 @@ struct Search {
 // positive combination, so the enclosures stay rigorous), without recomputing positions. bernstein_of_d's middle
 // coefficients carry the binomial factor 3, so the ends are tripled: the four are 3 times the Bernstein coefficients.
 double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4>& of_piece) {
-  const Interval half = detail::exact(0.5), three = detail::exact(3.0);
-  std::array<Interval, 4> b{three * of_piece[0], of_piece[1], of_piece[2], three * of_piece[3]};
+  using detail::scaled;
+  std::array<Interval, 4> b{scaled(of_piece[0], 3.0), of_piece[1], of_piece[2], scaled(of_piece[3], 3.0)};
   for (int i = 0; i < kToiBisections; ++i) {
     const double mid = 0.5 * (t0 + t1);
     if (!(mid > t0 && mid < t1)) break;
-    const Interval b01 = half * (b[0] + b[1]), b12 = half * (b[1] + b[2]), b23 = half * (b[2] + b[3]);
-    const Interval b012 = half * (b01 + b12), b123 = half * (b12 + b23);
-    const Interval b0123 = half * (b012 + b123);
+    const Interval b01 = scaled(b[0] + b[1], 0.5), b12 = scaled(b[1] + b[2], 0.5), b23 = scaled(b[2] + b[3], 0.5);
+    const Interval b012 = scaled(b01 + b12, 0.5), b123 = scaled(b12 + b23, 0.5);
+    const Interval b0123 = scaled(b012 + b123, 0.5);
     const std::array<Interval, 4> left{b[0], b01, b012, b0123};
     const std::array<Interval, 4> right{b0123, b123, b23, b[3]};
     if (common_strict_sign(left) != 0) {

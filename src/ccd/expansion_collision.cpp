@@ -165,7 +165,7 @@ bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const E
   std::array<Interval, 4> a;
   for (int i = 0; i <= n; ++i) a[static_cast<std::size_t>(i)] = enclose(p[static_cast<std::size_t>(i)]);
   const std::array<Interval, 4> b = bernstein_coefficients(
-      a, n, enclose(lo), enclose(width), [](const Interval& x, double c) { return exact(c) * x; });
+      a, n, enclose(lo), enclose(width), [](const Interval& x, double c) { return detail::scaled(x, c); });
   out.count = n + 1;
   for (int i = 0; i <= n; ++i) {
     out.sign[static_cast<std::size_t>(i)] = certain_sign(b[static_cast<std::size_t>(i)]);

@@ -44,6 +44,12 @@ TEST_CASE("interval sums, differences and products enclose the exact results", "
         if (exact_product != 0 && std::fabs(x * y) < 0x1p-1022) ++underflowing_products;
       }
     }
+    // Scaling by a positive constant of the kind the CCD uses (times in the step, 1/2, 2, 3).
+    for (const double c : {0.5, 3.0, 0.3125, 0x1p-30}) {
+      const Interval s = clothcd::ccd::detail::scaled(a, c);
+      CHECK(encloses(s, mpq_class(a.lo) * mpq_class(c)));
+      CHECK(encloses(s, mpq_class(a.hi) * mpq_class(c)));
+    }
   }
   CHECK(underflowing_products > 1000);  // the generator reaches the underflow range, or the test proves little
 }
