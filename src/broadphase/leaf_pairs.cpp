@@ -38,41 +38,6 @@ PackedBox packed_leaf_box(const Bvh& bvh, int node) {
   return pack_box(leaf_box(bvh, node));
 }
 
-// The four-lane tests (the vector extension: SSE on x86-64, NEON on ARM), as bits (bit k for position j + k), and the
-// masking of lanes past the end of a range.
-struct FourLanes {
-  static constexpr int kWidth = 4;
-  static unsigned overlap(const PackedBoxes& boxes, int j, const PackedBox& q) {
-    return lane_bits(boxes.overlap_lanes(j, q));
-  }
-  static unsigned edge_uses(const PackedVertexIds& ids, int j, int v, int w) {
-    return lane_bits(ids.edge_uses_lanes(j, v, w));
-  }
-  static unsigned face_uses(const PackedVertexIds& ids, int j, int v) { return lane_bits(ids.face_uses_lanes(j, v)); }
-  // `bits` without the lanes at or beyond `end` (a select, not a branch: the last group of a range is often short).
-  static unsigned below(unsigned bits, int j, int end) {
-    const int lanes = end - j < kWidth ? end - j : kWidth;
-    return bits & ((1u << lanes) - 1u);
-  }
-};
-
-#if defined(CLOTHCD_AVX2_PATHS)
-// The eight-lane tests (AVX2, BMI2), as bits.
-struct EightLanes {
-  static constexpr int kWidth = 8;
-  CLOTHCD_AVX2 static unsigned overlap(const PackedBoxes& boxes, int j, const PackedBox& q) {
-    return boxes.overlap_bits8(j, q);
-  }
-  CLOTHCD_AVX2 static unsigned edge_uses(const PackedVertexIds& ids, int j, int v, int w) {
-    return ids.edge_uses_bits8(j, v, w);
-  }
-  CLOTHCD_AVX2 static unsigned face_uses(const PackedVertexIds& ids, int j, int v) { return ids.face_uses_bits8(j, v); }
-  CLOTHCD_AVX2 static unsigned below(unsigned bits, int j, int end) {
-    return _bzhi_u32(bits, static_cast<unsigned>(end - j));  // end - j >= 8 keeps all eight
-  }
-};
-#endif
-
 // For each 4-bit lane mask: the passing lanes in order (padded with lane 0) and how many there are.
 struct LaneTable {
   std::array<std::array<int, 4>, 16> lanes{};
@@ -91,24 +56,77 @@ constexpr LaneTable make_lane_table() {
 
 constexpr LaneTable kLaneTable = make_lane_table();
 
+// The four-lane tests (the vector extension: SSE on x86-64, NEON on ARM), as bits (bit k for position j + k), and the
+// masking of lanes past the end of a range.
+struct FourLanes {
+  static constexpr int kWidth = 4;
+  static unsigned overlap(const PackedBoxes& boxes, int j, const PackedBox& q) {
+    return lane_bits(boxes.overlap_lanes(j, q));
+  }
+  static unsigned edge_uses(const PackedVertexIds& ids, int j, int v, int w) {
+    return lane_bits(ids.edge_uses_lanes(j, v, w));
+  }
+  static unsigned face_uses(const PackedVertexIds& ids, int j, int v) { return lane_bits(ids.face_uses_lanes(j, v)); }
+  // `bits` without the lanes at or beyond `end` (a select, not a branch: the last group of a range is often short).
+  static unsigned below(unsigned bits, int j, int end) {
+    const int lanes = end - j < kWidth ? end - j : kWidth;
+    return bits & ((1u << lanes) - 1u);
+  }
+  // Writes j + k for each set bit k of `mask` to out (all four slots written) and returns how many are set.
+  static int write_passing(unsigned mask, int j, int* out) {
+    const std::array<int, 4>& passing = kLaneTable.lanes[mask];
+    for (int k = 0; k < 4; ++k) out[k] = j + passing[k];
+    return kLaneTable.count[mask];
+  }
+};
+
+#if defined(CLOTHCD_AVX2_PATHS)
+// For each 8-bit lane mask: the passing lanes in order, as bytes (padded with lane 0).
+constexpr std::array<std::array<std::uint8_t, 8>, 256> make_byte_lanes() {
+  std::array<std::array<std::uint8_t, 8>, 256> table{};
+  for (int mask = 0; mask < 256; ++mask) {
+    int count = 0;
+    for (int lane = 0; lane < 8; ++lane) {
+      if ((mask >> lane) & 1) table[mask][count++] = static_cast<std::uint8_t>(lane);
+    }
+  }
+  return table;
+}
+
+constexpr std::array<std::array<std::uint8_t, 8>, 256> kByteLanes = make_byte_lanes();
+
+// The eight-lane tests (AVX2, BMI2), as bits.
+struct EightLanes {
+  static constexpr int kWidth = 8;
+  CLOTHCD_AVX2 static unsigned overlap(const PackedBoxes& boxes, int j, const PackedBox& q) {
+    return boxes.overlap_bits8(j, q);
+  }
+  CLOTHCD_AVX2 static unsigned edge_uses(const PackedVertexIds& ids, int j, int v, int w) {
+    return ids.edge_uses_bits8(j, v, w);
+  }
+  CLOTHCD_AVX2 static unsigned face_uses(const PackedVertexIds& ids, int j, int v) { return ids.face_uses_bits8(j, v); }
+  CLOTHCD_AVX2 static unsigned below(unsigned bits, int j, int end) {
+    return _bzhi_u32(bits, static_cast<unsigned>(end - j));  // end - j >= 8 keeps all eight
+  }
+  // Writes j + k for each set bit k of `mask` to out (all eight slots written, one store) and returns how many are set.
+  CLOTHCD_AVX2 static int write_passing(unsigned mask, int j, int* out) {
+    const __m256i lanes = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(kByteLanes[mask].data())));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_add_epi32(lanes, _mm256_set1_epi32(j)));
+    return __builtin_popcount(mask);
+  }
+};
+#endif
+
 // Writes the positions j in [begin, end) whose bit is set in `bits(j)` (bit k for position j + k, evaluated
 // Lanes::kWidth positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent
-// branch: each four bits of a group index a table of the passing lanes, all four slots are written, and the count
+// branch: each group's mask indexes a table of its passing lanes, every slot of the group is written, and the count
 // advances by the number set.
 template <class Lanes, class Bits>
 int select_lanes(int begin, int end, std::vector<int>& out, const Bits& bits) {
   const auto needed = static_cast<std::size_t>(end - begin + Lanes::kWidth);
   if (out.size() < needed) out.resize(needed);
   int n = 0;
-  for (int j = begin; j < end; j += Lanes::kWidth) {
-    const unsigned mask = Lanes::below(bits(j), j, end);
-    for (int base = 0; base < Lanes::kWidth; base += 4) {
-      const unsigned nibble = (mask >> base) & 15u;
-      const std::array<int, 4>& passing = kLaneTable.lanes[nibble];
-      for (int k = 0; k < 4; ++k) out[n + k] = j + base + passing[k];
-      n += kLaneTable.count[nibble];
-    }
-  }
+  for (int j = begin; j < end; j += Lanes::kWidth) n += Lanes::write_passing(Lanes::below(bits(j), j, end), j, &out[n]);
   return n;
 }
 
