@@ -605,7 +605,7 @@ SimplifyResult simplify_qem(const TriangleMesh& mesh, const SimplifySettings& se
   const int faces = static_cast<int>(mesh.face_count());
   if (settings.target_faces < 0 && settings.target_ratio < 0 && settings.max_error < 0)
     throw std::invalid_argument("simplify_qem: set target_faces, target_ratio or max_error");
-  if (settings.target_ratio >= 0 && !(settings.target_ratio > 0 && settings.target_ratio <= 1))
+  if (std::isnan(settings.target_ratio) || (settings.target_ratio >= 0 && !(settings.target_ratio <= 1 && settings.target_ratio > 0)))
     throw std::invalid_argument("simplify_qem: target_ratio must lie in (0, 1], got " +
                                 std::to_string(settings.target_ratio));
   if (!(settings.non_edge_threshold >= 0) || !std::isfinite(settings.non_edge_threshold))

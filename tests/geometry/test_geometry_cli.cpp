@@ -22,6 +22,10 @@ TEST_CASE("clothcd simplify writes the simplified mesh", "[geometry][cli]") {
   const auto bad = test::run_cli("simplify '" + (dir / "nope.ply").string() + "' '" + (dir / "o.obj").string() +
                                  "' --ratio 0.5");
   CHECK(bad.exit_code != 0);
+  const auto no_faces = test::run_cli("simplify '" + (dir / "sphere.obj").string() + "' '" + (dir / "o.obj").string() +
+                                      "' --faces 0");
+  CHECK(no_faces.exit_code != 0);
+  CHECK(no_faces.output.find("--faces") != std::string::npos);
 }
 
 TEST_CASE("clothcd obb prints the box, its volume and tau", "[geometry][cli]") {

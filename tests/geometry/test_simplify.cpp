@@ -203,6 +203,8 @@ TEST_CASE("QEM rejects bad settings and bad meshes", "[geometry][qem]") {
   SimplifySettings s;
   s.target_ratio = 1.5;
   CHECK_THROWS_AS(simplify_qem(sphere, s), std::invalid_argument);
+  s.target_ratio = std::nan("");  // not "unset": it used to simplify the mesh away
+  CHECK_THROWS_AS(simplify_qem(sphere, s), std::invalid_argument);
   s.target_ratio = 0.5;
   s.non_edge_threshold = -1;
   CHECK_THROWS_AS(simplify_qem(sphere, s), std::invalid_argument);

@@ -130,6 +130,10 @@ TEST_CASE("clothcd gen-dataset writes a CSV that reads back, and rejects bad arg
   const test::CliRun zero = test::run_cli("gen-dataset --out '" + out + "' --steps 0");
   CHECK(zero.exit_code != 0);
   CHECK_THAT(zero.output, Catch::Contains("steps must be at least 1"));
+  // An output in a missing folder fails before any simulation.
+  const test::CliRun nowhere = test::run_cli("gen-dataset --out '" + (dir / "missing/pairs.csv").string() + "'");
+  CHECK(nowhere.exit_code != 0);
+  CHECK_THAT(nowhere.output, Catch::Contains("cannot open for writing") && !Catch::Contains("simulating"));
 }
 
 TEST_CASE("keep_collisions keeps every colliding candidate and samples the rest", "[learning][gen-dataset]") {

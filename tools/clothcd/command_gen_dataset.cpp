@@ -1,6 +1,7 @@
 // `clothcd gen-dataset --out FILE.csv`: labelled candidate pairs from simulated steps (Jin et al., section 3.3.1 (1)),
 // written as the pair data set CSV that `clothcd train` reads (datasets/README.md).
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -46,6 +47,10 @@ void run_gen_dataset(GenDatasetOptions options) {
   }
   settings.seeds = options.seeds;
   if (options.rebalance < 0.0) throw std::invalid_argument("gen-dataset: --rebalance must be >= 0");
+  // Checked before the simulations, which can take minutes.
+  const std::filesystem::path folder = std::filesystem::path(options.out).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    throw std::runtime_error(options.out + ": cannot open for writing (no folder " + folder.string() + ")");
   learning::GeneratedDataset generated = learning::generate_pair_dataset(settings, print_progress);
   learning::PairDataset& dataset = generated.dataset;
   if (options.rebalance > 0.0) dataset = learning::rebalance_training_rows(dataset, options.rebalance, settings.seed);

@@ -2,6 +2,7 @@
 // simplification (Garland & Heckbert) of a mesh file, with timing and optionally the Hausdorff distance to the input.
 #include <chrono>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -22,8 +23,8 @@ void add_simplify_command(CLI::App& app) {
   command->add_option("OUT", *out, "Output file, .obj or .ply")->required();
   auto* ratio = command->add_option("--ratio", settings->target_ratio,
                                     "Fraction of the faces to keep, in (0, 1] (0.1 = the paper's 90% simplified)");
-  auto* faces = command->add_option("--faces", settings->target_faces, "Number of faces to keep")
-                    ->check(CLI::NonNegativeNumber);
+  auto* faces = command->add_option("--faces", settings->target_faces, "Number of faces to keep (at least 1)")
+                    ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   auto* error = command->add_option("--max-error", settings->max_error,
                                     "Never contract a pair whose error exceeds this distance (model units)")
                     ->check(CLI::NonNegativeNumber);
