@@ -40,6 +40,8 @@ void check_dataset(const PairDataset& dataset, const TrainingSettings& settings)
   if (settings.max_neurons < 1 || settings.max_neurons > kMaxLayerNeurons)
     throw std::invalid_argument("max neurons must be in 1.." + std::to_string(kMaxLayerNeurons));
   if (settings.trials < 1) throw std::invalid_argument("trials must be at least 1");
+  if (!(settings.decision_threshold >= 0.0 && settings.decision_threshold <= 1.0))
+    throw std::invalid_argument("the decision threshold must be in [0, 1]");
   const ClassBalance balance = class_balance(dataset);
   const auto training = static_cast<std::size_t>(Split::Training), selection = static_cast<std::size_t>(Split::Selection);
   if (balance.rows[selection] == 0) throw std::invalid_argument("the data set has no selection rows");

@@ -43,9 +43,9 @@ TriangleMesh load_model(const std::string& model, const SceneSettings& settings)
 TriangleMesh make_cloth(const SceneSettings& settings, double height) {
   TriangleMesh cloth;
   if (settings.resolution >= 0) {
-    if (settings.resolution < 2) {
-      throw std::invalid_argument("cloth resolution must be at least 2 vertices per side (got " +
-                                  std::to_string(settings.resolution) + ")");
+    if (settings.resolution < 2 || settings.resolution > kMaxResolution) {
+      throw std::invalid_argument("cloth resolution must be 2 to " + std::to_string(kMaxResolution) +
+                                  " vertices per side (got " + std::to_string(settings.resolution) + ")");
     }
     cloth = make_grid(settings.resolution, settings.resolution, kClothSize, kClothSize);
   } else {

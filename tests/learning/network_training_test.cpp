@@ -2,6 +2,8 @@
 // happens, constant columns are dropped and recorded, and training is deterministic for a seed.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -70,4 +72,9 @@ TEST_CASE("training refuses data sets it cannot learn from", "[learning][trainin
   TrainingSettings wrong_count = test::small_training_settings();
   wrong_count.feature_count = 12;
   CHECK_THROWS_WITH(train_pair_network(dataset, wrong_count, out, "x"), Catch::Contains("feature columns"));
+  for (const double threshold : {std::nan(""), -0.1, 1.5}) {  // refused before any training
+    TrainingSettings bad_threshold = test::small_training_settings();
+    bad_threshold.decision_threshold = threshold;
+    CHECK_THROWS_WITH(train_pair_network(dataset, bad_threshold, out, "x"), Catch::Contains("decision threshold"));
+  }
 }

@@ -133,6 +133,9 @@ TEST_CASE("bad simulation input fails with a clear message", "[simulation][bad-i
   zero.name = "box";
   zero.resolution = 0;
   CHECK_THROWS_WITH(make_scene(zero), Catch::Contains("resolution"));
+  SceneSettings huge = zero;  // would not fit in memory: refused before allocating
+  huge.resolution = 100000;
+  CHECK_THROWS_WITH(make_scene(huge), Catch::Contains("resolution") && Catch::Contains("2048"));
   SceneSettings unknown;
   unknown.name = "teapot";
   CHECK_THROWS_WITH(make_scene(unknown), Catch::Contains("unknown scene 'teapot'"));

@@ -46,7 +46,7 @@ void run_gen_dataset(GenDatasetOptions options) {
     settings.cloths.push_back(c[0]);
   }
   settings.seeds = options.seeds;
-  if (options.rebalance < 0.0) throw std::invalid_argument("gen-dataset: --rebalance must be >= 0");
+  if (!(options.rebalance >= 0.0)) throw std::invalid_argument("gen-dataset: --rebalance must be >= 0");
   // Checked before the simulations, which can take minutes.
   const std::filesystem::path folder = std::filesystem::path(options.out).parent_path();
   if (!folder.empty() && !std::filesystem::is_directory(folder))

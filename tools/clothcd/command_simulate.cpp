@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -241,7 +242,8 @@ void add_simulate_command(CLI::App& app) {
                                                  "cube, fish, or file (with --model)");
   command->add_option("--cloth", options->cloth, "The paper's cloth: A (20x20), B (30x30), C (50x50)");
   command->add_option("--resolution", options->resolution, "N x N cloth vertices instead of --cloth");
-  command->add_option("--steps", options->steps, "Number of steps (default: the scene's)");
+  command->add_option("--steps", options->steps, "Number of steps (default: the scene's)")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   command->add_option("--dt", options->dt, "Step in seconds (default 0.005)");
   command->add_option("--culling", options->culling, "filters, none, nonpenetration, projection or network");
   command->add_option("--bvh", options->bvh, "sphere-root-aabb, aabb or aabb-obb");

@@ -40,6 +40,7 @@ void run_train(const TrainOptions& options) {
     learning::write_pair_dataset_csv(learning::make_random_pair_dataset(random), options.dataset);
   }
   learning::PairDataset dataset = learning::read_pair_dataset_csv(options.dataset);
+  if (!(options.rebalance >= 0.0)) throw std::invalid_argument("--rebalance must be >= 0 (0: off)");
   if (options.rebalance > 0.0)
     dataset = learning::rebalance_training_rows(dataset, options.rebalance, options.settings.seed);
   learning::TrainingSettings settings = options.settings;

@@ -12,11 +12,14 @@
 
 namespace clothcd::simulation {
 
+/// Largest cloth resolution (vertices per side) a scene accepts: 2048^2 vertices, about 8.4M triangles.
+inline constexpr int kMaxResolution = 2048;
+
 /// What to build.
 struct SceneSettings {
   std::string name = "box";           ///< One of scene_names().
   char cloth = 'A';                   ///< The paper's cloth: 'A' (20x20), 'B' (30x30) or 'C' (50x50).
-  int resolution = -1;                ///< When >= 0: an N x N cloth instead of the letter (N >= 2).
+  int resolution = -1;                ///< When >= 0: an N x N cloth instead of the letter (2 <= N <= kMaxResolution).
   std::filesystem::path model_dir;    ///< Cache folder for fetch_model (empty: default_model_dir()).
   std::filesystem::path model_file;   ///< Scene "file": the obstacle mesh to drop the cloth on.
 };
