@@ -97,6 +97,9 @@ ModelCard read_model_card(const std::string& path) {
   card.feature_count = count(root, "feature_count", path);
   card.features = strings(root, "features", path);
   card.inputs = strings(root, "inputs", path);
+  if (card.feature_count != card.features.size())
+    throw std::runtime_error(path + ": feature_count is " + std::to_string(card.feature_count) + " but " +
+                             std::to_string(card.features.size()) + " features are listed");
   card.dropped_columns = strings(root, "dropped_columns", path);
   card.dataset = member(root, "dataset", json::Value::Kind::String, path).string;
   const json::Value& rows = member(root, "rows", json::Value::Kind::Object, path);

@@ -143,6 +143,12 @@ TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
   });
   CHECK_THROWS_WITH(PairClassifier::load(old_version), Catch::Contains("version"));
 
+  const std::string wrong_count = edited_model("count", "card.json", [](const std::string& text) {
+    const std::size_t value = text.find("\"feature_count\": ") + std::string("\"feature_count\": ").size();
+    return text.substr(0, value) + "14" + text.substr(text.find(',', value));
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(wrong_count), Catch::Contains("feature_count"));
+
   const std::string broken_card = edited_model("card", "card.json", [](const std::string& text) {
     return text.substr(0, 40);
   });
