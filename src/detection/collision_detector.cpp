@@ -212,7 +212,7 @@ struct CollisionDetector::Impl {
   }
 
   // The projection filter (and the non-penetration filter behind it in the Combined mode) on the `todo` pairs, a block
-  // of one kind at a time (ccd::detail::projection_filter_block); stores the queries of the pairs kept.
+  // of one kind at a time (ccd::detail::projection_filter_block); sets their keep flags.
   void cull_in_blocks(const Vertices& start, const Vertices& end, const ccd::CcdSettings& ccd_settings) {
     constexpr std::size_t lanes = ccd::detail::QueryBlock::kLanes;
     const std::size_t vf = batch.candidates.vertex_face.size();
@@ -249,8 +249,7 @@ struct CollisionDetector::Impl {
           continue;
         }
         const std::size_t i = todo[first + lane];
-        batch.queries[i] = block.query(lane);
-        batch.keep[i] = nonpenetration && ccd::nonpenetration_filter_culls(batch.queries[i], ccd_settings) ? 0 : 1;
+        batch.keep[i] = nonpenetration && ccd::nonpenetration_filter_culls(block.query(lane), ccd_settings) ? 0 : 1;
       }
     });
   }
@@ -265,6 +264,7 @@ struct CollisionDetector::Impl {
     std::vector<std::uint8_t>& keep = batch.keep;
     std::vector<ccd::CcdResult>& results = batch.results;
     if (network) {
+      queries.resize(total);
       for_each_index(total, settings.parallel, [&](std::size_t i) { gather(start, end, i, queries[i]); });
       const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep);
       stats.network_dropped = n.dropped;
@@ -276,14 +276,13 @@ struct CollisionDetector::Impl {
       cull_in_blocks(start, end, ccd_settings);
     } else {
       for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
-        // None or NonPenetration: the query is built on the stack and stored only for the pairs that survive.
+        // None or NonPenetration: the query is built on the stack.
         const std::size_t i = todo[j];
         ccd::CcdQuery query;
         gather(start, end, i, query);
         const bool culled =
             filter == ccd::CcdFilter::NonPenetration && ccd::nonpenetration_filter_culls(query, ccd_settings);
         keep[i] = culled ? 0 : 1;
-        if (keep[i]) queries[i] = query;
       });
     }
     stats.culling_ms = milliseconds_since(t);
@@ -291,10 +290,19 @@ struct CollisionDetector::Impl {
     t = Clock::now();
     // Pairs the filters passed skip the filter tests inside the CCD; the network's Keep pairs met no filter.
     const ccd::CcdFilter applied = network ? ccd::CcdFilter::None : filter;
+    // Outside the network mode the kept pairs' positions are gathered again rather than stored by the culling: on a
+    // large cloth, storing a query per kept pair and reading it back was most of the stage's memory traffic.
     for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
       const std::size_t i = todo[j];
-      results[i] = keep[i] ? ccd::detail::continuous_collision_after_filter(queries[i], ccd_settings, applied)
-                           : ccd::CcdResult{};
+      if (!keep[i]) {
+        results[i] = ccd::CcdResult{};
+      } else if (network) {
+        results[i] = ccd::detail::continuous_collision_after_filter(queries[i], ccd_settings, applied);
+      } else {
+        ccd::CcdQuery query;
+        gather(start, end, i, query);
+        results[i] = ccd::detail::continuous_collision_after_filter(query, ccd_settings, applied);
+      }
     });
     stats.reused = static_cast<long>(total - todo.size());
     collect();

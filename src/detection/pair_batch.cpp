@@ -6,7 +6,6 @@
 namespace clothcd::detail {
 
 void PairBatch::resize_to_candidates() {
-  queries.resize(size());
   refs.resize(size());
   keep.resize(size());
   results.resize(size());

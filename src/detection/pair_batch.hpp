@@ -19,14 +19,14 @@ namespace clothcd::detail {
 /// verdict (keep) and CCD result.
 struct PairBatch {
   broadphase::CandidateSet candidates;         ///< The pairs.
-  std::vector<ccd::CcdQuery> queries;          ///< Positions of the pairs sent to the CCD (all in network mode).
+  std::vector<ccd::CcdQuery> queries;          ///< Network mode: positions of every pair (its culler reads them).
   std::vector<std::array<VertexRef, 4>> refs;  ///< Vertices of each pair.
   std::vector<std::uint8_t> keep;              ///< 1 when the pair survived culling.
   std::vector<ccd::CcdResult> results;         ///< CCD result (Separated when culled).
 
   /// Number of pairs.
   [[nodiscard]] std::size_t size() const { return candidates.size(); }
-  /// Resizes the per-pair arrays to the candidates.
+  /// Resizes the per-pair arrays (all but the queries) to the candidates.
   void resize_to_candidates();
 };
 
