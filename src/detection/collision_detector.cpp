@@ -294,9 +294,8 @@ struct CollisionDetector::Impl {
     // large cloth, storing a query per kept pair and reading it back was most of the stage's memory traffic.
     for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
       const std::size_t i = todo[j];
-      if (!keep[i]) {
-        results[i] = ccd::CcdResult{};
-      } else if (network) {
+      if (!keep[i]) return;  // a culled pair gets no result: readers check keep first (less memory traffic)
+      if (network) {
         results[i] = ccd::detail::continuous_collision_after_filter(queries[i], ccd_settings, applied);
       } else {
         ccd::CcdQuery query;
@@ -337,8 +336,9 @@ struct CollisionDetector::Impl {
     }
     vertex_face_hits.clear();
     edge_edge_hits.clear();
+    const std::vector<std::uint8_t>& keep = batch.keep;
     for (std::size_t i = 0; i < results.size(); ++i) {
-      if (!results[i].hit) continue;
+      if (!keep[i] || !results[i].hit) continue;
       if (i < vf) {
         const auto& c = candidates.vertex_face[i];
         const std::uint64_t first = vertex_base[c.vertex_body] + static_cast<std::uint64_t>(c.vertex);

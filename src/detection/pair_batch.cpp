@@ -57,7 +57,7 @@ std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vec
   auto copy = [&](std::size_t to, std::size_t i) {
     next.refs[to] = previous.refs[i];
     next.keep[to] = previous.keep[i];
-    next.results[to] = previous.results[i];
+    if (previous.keep[i]) next.results[to] = previous.results[i];  // culled pairs have no result
   };
   for (std::size_t j = 0; j < reused_vf; ++j) copy(j, from[j]);
   for (std::size_t p = reused_vf; p < next_vf; ++p) todo.push_back(p);

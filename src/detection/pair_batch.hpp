@@ -22,7 +22,7 @@ struct PairBatch {
   std::vector<ccd::CcdQuery> queries;          ///< Network mode: positions of every pair (its culler reads them).
   std::vector<std::array<VertexRef, 4>> refs;  ///< Vertices of each pair.
   std::vector<std::uint8_t> keep;              ///< 1 when the pair survived culling.
-  std::vector<ccd::CcdResult> results;         ///< CCD result (Separated when culled).
+  std::vector<ccd::CcdResult> results;         ///< CCD result of each kept pair (unset where keep is 0).
 
   /// Number of pairs.
   [[nodiscard]] std::size_t size() const { return candidates.size(); }
