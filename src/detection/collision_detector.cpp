@@ -216,16 +216,20 @@ struct CollisionDetector::Impl {
   void cull_in_blocks(const Vertices& start, const Vertices& end, const ccd::CcdSettings& ccd_settings) {
     constexpr std::size_t lanes = ccd::detail::QueryBlock::kLanes;
     const std::size_t vf = batch.candidates.vertex_face.size();
+    // todo holds the vertex-face positions first, then the edge-edge ones (each ascending): blocks of up to `lanes`
+    // positions of one kind.
+    const std::size_t first_edge_edge =
+        static_cast<std::size_t>(std::lower_bound(todo.begin(), todo.end(), vf) - todo.begin());
     blocks.clear();
-    for (std::size_t j = 0; j < todo.size(); ++j) {
-      const bool new_block = blocks.empty() || j - blocks.back() == lanes || (todo[j] < vf) != (todo[j - 1] < vf);
-      if (new_block) blocks.push_back(j);
-    }
+    for (std::size_t j = 0; j < first_edge_edge; j += lanes) blocks.push_back(j);
+    for (std::size_t j = first_edge_edge; j < todo.size(); j += lanes) blocks.push_back(j);
     const ccd::ProjectionFilterOptions options{settings.projection_normals};
+    const ccd::detail::BlockIsa isa = ccd::detail::fastest_block_isa();
     const bool nonpenetration = filter == ccd::CcdFilter::Combined;
     for_each_index(blocks.size(), settings.parallel, [&](std::size_t b) {
       const std::size_t first = blocks[b];
-      const std::size_t last = b + 1 < blocks.size() ? blocks[b + 1] : todo.size();
+      const std::size_t segment_end = first < first_edge_edge ? first_edge_edge : todo.size();
+      const std::size_t last = std::min(first + lanes, segment_end);
       ccd::detail::QueryBlock block;
       block.kind = todo[first] < vf ? PairKind::VertexFace : PairKind::EdgeEdge;
       block.count = static_cast<int>(last - first);
@@ -242,7 +246,7 @@ struct CollisionDetector::Impl {
       }
       block.pad_unused();
       std::array<std::uint8_t, lanes> culled;
-      ccd::detail::projection_filter_block(block, ccd_settings, options, culled.data());
+      ccd::detail::projection_filter_block(block, ccd_settings, options, culled.data(), isa);
       for (int lane = 0; lane < block.count; ++lane) {
         if (culled[lane]) {
           batch.keep[todo[first + lane]] = 0;
