@@ -122,6 +122,13 @@ int discard_disproved(std::vector<Collision>& collisions, const StepContext& con
   return static_cast<int>(before - collisions.size());
 }
 
+double start_gap(const Collision& collision, const StepContext& context) {
+  const std::array<double, 4> w = pair_weights(collision);
+  Eigen::Vector3d gap_vector = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 4; ++i) gap_vector += w[i] * start_position(collision.vertices[i], context);
+  return collision.normal.dot(gap_vector);
+}
+
 void apply_impulses(const std::vector<Collision>& collisions, const StepContext& context,
                     const ResponseSettings& settings, Vertices& cloth_end) {
   const double target = settings.thickness * settings.separation;

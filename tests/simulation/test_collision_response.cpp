@@ -4,6 +4,7 @@
 
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "clothcd/simulation/collision_response.hpp"
+#include "clothcd/simulation/contact_memory.hpp"
 
 using namespace clothcd;
 using namespace clothcd::simulation;
@@ -121,4 +122,40 @@ TEST_CASE("conservative reports are dropped only when provably apart", "[simulat
   Collision decided = vertex_on_ground(0.25, 0.25);  // exact reports are never dropped
   reports = {decided};
   CHECK(discard_disproved(reports, f.context(), f.start, 0.004) == 0);
+}
+
+TEST_CASE("the start gap is measured along the contact normal at the contact point", "[simulation][response]") {
+  Fixture f;  // vertex 3 is 0.01 above the ground
+  CHECK(start_gap(vertex_on_ground(0.25, 0.25), f.context()) == Approx(0.01));
+  Collision flipped = vertex_on_ground(0.25, 0.25);
+  flipped.normal = -flipped.normal;
+  CHECK(start_gap(flipped, f.context()) == Approx(-0.01));
+}
+
+TEST_CASE("the contact memory merges reports in canonical order and forgets pairs out of reach", "[simulation][response]") {
+  Fixture f;
+  auto on_ground_vertex = [](int cloth_vertex, double w1) {
+    Collision c = vertex_on_ground(w1, 0.25);
+    c.vertices[0].vertex = cloth_vertex;
+    return c;
+  };
+  ContactMemory memory;
+  memory.remember({on_ground_vertex(1, 0.1), on_ground_vertex(3, 0.1)});
+  memory.remember({on_ground_vertex(0, 0.2), on_ground_vertex(3, 0.3)});  // 3 again: its new record replaces the old
+  std::vector<Collision> expected = {on_ground_vertex(0, 0.2), on_ground_vertex(1, 0.1), on_ground_vertex(3, 0.3)};
+  REQUIRE(memory.contacts().size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    CHECK(memory.contacts()[i].vertices[0].vertex == expected[i].vertices[0].vertex);
+    CHECK(memory.contacts()[i].parameters[0] == expected[i].parameters[0]);
+  }
+  std::vector<Collision> sorted = memory.contacts();
+  sort_collisions(sorted);
+  for (std::size_t i = 0; i < sorted.size(); ++i) CHECK(sorted[i].vertices[0].vertex == memory.contacts()[i].vertices[0].vertex);
+
+  // Vertices 0 and 1 are 1 above the ground (the cloth triangle), vertex 3 is 0.01 above it.
+  memory.forget_distant(f.context(), 0.5);
+  REQUIRE(memory.contacts().size() == 1);
+  CHECK(memory.contacts()[0].vertices[0].vertex == 3);
+  memory.forget_distant(f.context(), 0.005);
+  CHECK(memory.contacts().empty());
 }

@@ -67,6 +67,12 @@ TEST_CASE("box scene with the sphere-root-AABB hierarchy and each filter alone",
   CHECK(run_without_intersections(scene_named("box"), 28, settings) > 0);
 }
 
+TEST_CASE("human scene with and without the contact memory", "[simulation][scene]") {
+  SimulationSettings settings;
+  settings.response.contact_reach = GENERATE(0.0, 4.0);
+  CHECK(run_without_intersections(scene_named("human"), 60, settings) > 0);
+}
+
 TEST_CASE("character scene: the cloth reaches the model without intersecting", "[simulation][scene]") {
   CHECK(run_without_intersections(scene_named("character"), 28) > 0);
 }
@@ -128,6 +134,11 @@ TEST_CASE("bad simulation input fails with a clear message", "[simulation][bad-i
     SimulationSettings settings;
     settings.dt = dt;
     CHECK_THROWS_WITH(Simulator(scene, settings), Catch::Contains("dt"));
+  }
+  for (const double reach : {-1.0, std::numeric_limits<double>::infinity()}) {
+    SimulationSettings settings;
+    settings.response.contact_reach = reach;
+    CHECK_THROWS_WITH(Simulator(scene, settings), Catch::Contains("contact_reach"));
   }
   SceneSettings zero;
   zero.name = "box";

@@ -25,6 +25,9 @@ struct ResponseSettings {
   double friction = 0.3;       ///< Coulomb friction coefficient.
   int impulse_rounds = 4;      ///< Detection + impulse rounds before the fail-safe.
   int failsafe_rounds = 64;    ///< Upper bound on fail-safe rounds (each one detection call).
+  /// Contacts of earlier steps are re-applied as impulses before the next step's detection while their gap at the
+  /// start of the step is at most contact_reach * thickness (ContactMemory); 0 turns the memory off.
+  double contact_reach = 4.0;
 };
 
 /// Everything the response reads about one step of one scene.
@@ -45,6 +48,10 @@ struct StepContext {
 /// sub-intervals (m shrinks with their length). Returns how many reports were removed.
 int discard_disproved(std::vector<Collision>& collisions, const StepContext& context, const Vertices& cloth_end,
                       double thickness);
+
+/// Gap of a collision's pair along its contact normal at the start of the step: normal . (first point - second point),
+/// the points at the collision's parameters. Negative when the pair is on the other side of its normal.
+[[nodiscard]] double start_gap(const Collision& collision, const StepContext& context);
 
 /// Applies one Gauss-Seidel sweep of impulses for `collisions` (in their given order) to the cloth's end-of-step
 /// positions `cloth_end` (#V x 3). Obstacles and pinned vertices do not move.

@@ -10,6 +10,7 @@
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/simulation/cloth_model.hpp"
 #include "clothcd/simulation/collision_response.hpp"
+#include "clothcd/simulation/contact_memory.hpp"
 #include "clothcd/simulation/implicit_integrator.hpp"
 #include "clothcd/simulation/scene.hpp"
 
@@ -72,6 +73,7 @@ class Simulator {
   Vertices start_, end_, velocities_;
   std::vector<Vertices> obstacle_start_, obstacle_end_;
   std::vector<Collision> collisions_;
+  ContactMemory contacts_;
 };
 
 }  // namespace clothcd::simulation
