@@ -132,7 +132,8 @@ TEST_CASE("the start gap is measured along the contact normal at the contact poi
   CHECK(start_gap(flipped, f.context()) == Approx(-0.01));
 }
 
-TEST_CASE("the contact memory merges reports in canonical order and forgets pairs out of reach", "[simulation][response]") {
+TEST_CASE("the contact memory merges reports in canonical order and forgets pairs out of reach",
+          "[simulation][response]") {
   Fixture f;
   auto on_ground_vertex = [](int cloth_vertex, double w1) {
     Collision c = vertex_on_ground(w1, 0.25);
@@ -150,7 +151,9 @@ TEST_CASE("the contact memory merges reports in canonical order and forgets pair
   }
   std::vector<Collision> sorted = memory.contacts();
   sort_collisions(sorted);
-  for (std::size_t i = 0; i < sorted.size(); ++i) CHECK(sorted[i].vertices[0].vertex == memory.contacts()[i].vertices[0].vertex);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    CHECK(sorted[i].vertices[0].vertex == memory.contacts()[i].vertices[0].vertex);
+  }
 
   // Vertices 0 and 1 are 1 above the ground (the cloth triangle), vertex 3 is 0.01 above it.
   memory.forget_distant(f.context(), 0.5);

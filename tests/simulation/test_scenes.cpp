@@ -167,14 +167,19 @@ TEST_CASE("bad simulation input fails with a clear message", "[simulation][bad-i
   CHECK_THROWS_WITH(make_scene(with_nan), Catch::Contains("clothcd-nan-model.obj"));
 }
 
-TEST_CASE("clothcd simulate rejects dt = 0 with a one-line message", "[simulation][cli][bad-input]") {
+TEST_CASE("clothcd simulate rejects dt = 0 and a negative contact reach with a one-line message",
+          "[simulation][cli][bad-input]") {
   const auto dir = std::filesystem::temp_directory_path() / "clothcd-simulate-bad";
   const auto err = dir.string() + ".err";
-  const std::string command = std::string(CLOTHCD_CLI_PATH) + " simulate --scene box --dt 0 --out " + dir.string() +
-                              " > /dev/null 2> " + err;
-  CHECK(std::system(command.c_str()) != 0);
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  CHECK_THAT(text.str(), Catch::Contains("clothcd: error:") && Catch::Contains("dt"));
+  using OptionAndWord = std::pair<std::string, std::string>;
+  const OptionAndWord cases[] = {{"--dt 0", "dt"}, {"--contact-reach -1", "contact_reach"}};
+  for (const auto& [option, word] : cases) {
+    const std::string command = std::string(CLOTHCD_CLI_PATH) + " simulate --scene box " + option + " --out " +
+                                dir.string() + " > /dev/null 2> " + err;
+    CHECK(std::system(command.c_str()) != 0);
+    std::ifstream in(err);
+    std::stringstream text;
+    text << in.rdbuf();
+    CHECK_THAT(text.str(), Catch::Contains("clothcd: error:") && Catch::Contains(word));
+  }
 }

@@ -36,6 +36,7 @@ struct SimulateOptions {
   int check_every = 1;
   double thickness = ResponseSettings{}.thickness;
   double friction = ResponseSettings{}.friction;
+  double contact_reach = ResponseSettings{}.contact_reach;
   std::string model_dir;
   std::string model_file;
   std::string network_model;
@@ -165,6 +166,7 @@ void run(const SimulateOptions& options) {
   settings.dt = options.dt;
   settings.response.thickness = options.thickness;
   settings.response.friction = options.friction;
+  settings.response.contact_reach = options.contact_reach;
   settings.detector.culling = parse_culling(options.culling);
   settings.detector.hierarchy = parse_hierarchy(options.bvh);
   if (!options.network_model.empty() && settings.detector.culling != CullingMode::Network) {
@@ -251,6 +253,9 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--check-every", options->check_every, "Run the intersection check every K steps (default 1)");
   command->add_option("--thickness", options->thickness, "Cloth thickness in metres");
   command->add_option("--friction", options->friction, "Coulomb friction coefficient");
+  command->add_option("--contact-reach", options->contact_reach,
+                      "Re-apply earlier steps' contacts before detection while their gap is within this many "
+                      "thicknesses (default 4; 0 turns the contact memory off)");
   command->add_option("--model-dir", options->model_dir, "Model cache folder (default $CLOTHCD_MODEL_DIR or "
                                                          ".cache/models)");
   command->add_option("--model", options->model_file, "Obstacle mesh file for --scene file");
