@@ -3,8 +3,11 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <random>
 #include <tuple>
+
+#include <tbb/global_control.h>
 
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/ccd/ccd.hpp"
@@ -137,10 +140,13 @@ TEST_CASE("detector output does not depend on the hierarchy or threads", "[detec
   end.col(1).array() += 0.25;
   std::vector<std::vector<Key>> outputs;
   for (HierarchyKind hierarchy : {HierarchyKind::SphereRootAabb, HierarchyKind::Aabb, HierarchyKind::AabbObb}) {
-    for (bool parallel : {false, true}) {
+    // Serial, parallel under a one-thread limit and parallel with two threads must agree.
+    for (const int threads : {0, 1, 2}) {
       DetectorSettings settings;
       settings.hierarchy = hierarchy;
-      settings.parallel = parallel;
+      settings.parallel = threads > 0;
+      std::optional<tbb::global_control> limit;
+      if (threads == 1) limit.emplace(tbb::global_control::max_allowed_parallelism, 1);
       CollisionDetector detector(cloth.faces, static_cast<int>(cloth.vertex_count()), settings);
       detector.add_obstacle(obstacle);
       std::vector<Key> keys;
