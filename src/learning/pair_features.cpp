@@ -130,9 +130,10 @@ void compute_pair_features(const PairGeometry& pair, const FeatureSettings& sett
     for (int k = 0; k < 4; ++k) motion_squared += (pair.end[k] - pair.start[k] - mean_motion).squaredNorm();
     all[12] = std::sqrt(0.25 * motion_squared) * length_scale;
     all[13] = centre_gap(pair.kind, pair.start) * length_scale;
-    all[15] = centre_gap(pair.kind, pair.end) * length_scale;
-    all[16] = primitive_area(pair.kind, pair.start) * length_scale * length_scale;
-    all[17] = primitive_area(pair.kind, pair.end) * length_scale * length_scale;
+    // The extra features only when asked for (the default 15 stop before them).
+    if (settings.count > 15) all[15] = centre_gap(pair.kind, pair.end) * length_scale;
+    if (settings.count > 16) all[16] = primitive_area(pair.kind, pair.start) * length_scale * length_scale;
+    if (settings.count > 17) all[17] = primitive_area(pair.kind, pair.end) * length_scale * length_scale;
   }
   all[14] = pair.kind == PairType::EdgeEdge ? 1.0 : 0.0;
   std::copy(all, all + std::min(settings.count, kMaxPairFeatures), out);

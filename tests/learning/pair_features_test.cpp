@@ -92,6 +92,18 @@ TEST_CASE("degenerate and invalid pairs give defined features", "[learning][feat
   CHECK_FALSE(std::isfinite(f[0]));
 }
 
+TEST_CASE("fewer features are the first ones of the full set", "[learning][features]") {
+  std::mt19937_64 rng(29);
+  for (int trial = 0; trial < 200; ++trial) {
+    const PairGeometry pair = test::random_pair(rng);
+    const std::vector<double> all = features_of(pair);
+    for (std::size_t count = 1; count <= kMaxPairFeatures; ++count) {
+      const std::vector<double> some = features_of(pair, count);
+      for (std::size_t f = 0; f < count; ++f) CHECK(some[f] == all[f]);
+    }
+  }
+}
+
 TEST_CASE("feature count is a setting", "[learning][features]") {
   CHECK(pair_feature_names(FeatureSettings{}).size() == 15);
   CHECK(pair_feature_names(FeatureSettings{kMaxPairFeatures}).size() == kMaxPairFeatures);
