@@ -15,6 +15,8 @@
 
 #include <Eigen/Geometry>
 
+#include "learning/pair_feature_block.hpp"
+
 namespace clothcd::learning {
 namespace {
 
@@ -98,9 +100,7 @@ std::vector<std::string> pair_feature_names(const FeatureSettings& settings) {
 
 void compute_pair_features(const PairGeometry& pair, const FeatureSettings& settings, double* out) {
   double all[kMaxPairFeatures] = {};
-  double coordinate_sum = 0.0;
-  for (std::size_t k = 0; k < 4; ++k) coordinate_sum += pair.start[k].sum() + pair.end[k].sum();
-  if (!std::isfinite(coordinate_sum)) {
+  if (!detail::pair_coordinates_finite(pair)) {
     // Comparisons with NaN would turn into arbitrary margins: mark every feature invalid, the classifier keeps the pair.
     std::fill(out, out + std::min(settings.count, kMaxPairFeatures), std::numeric_limits<double>::quiet_NaN());
     return;
@@ -143,11 +143,7 @@ void compute_pair_features(const PairGeometry* pairs, std::size_t count, const F
                            PairFeatureBatch& batch) {
   const std::size_t features = std::min(settings.count, kMaxPairFeatures);
   batch.resize(count, features);
-  double row[kMaxPairFeatures];
-  for (std::size_t i = 0; i < count; ++i) {
-    compute_pair_features(pairs[i], settings, row);
-    for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = row[f];
-  }
+  detail::compute_feature_blocks(pairs, count, features, true, batch);
 }
 
 }  // namespace clothcd::learning

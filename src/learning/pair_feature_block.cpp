@@ -1,0 +1,286 @@
+// Pair features in blocks (see pair_feature_block.hpp). Every expression below is the per-pair code's
+// (pair_features.cpp) written lane by lane: the same operands, the same association, Eigen's order for its
+// expressions (a 3-vector dot product or squared norm is (x0 y0 + x1 y1) + x2 y2); minima and maxima may pick the
+// other of two equal zeros, which changes no feature value beyond the sign of a zero. Cube roots stay scalar calls.
+#include "learning/pair_feature_block.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "clothcd/cpu_features.hpp"
+
+namespace clothcd::learning::detail {
+namespace {
+
+constexpr int kLanes = 8;
+
+// One double per lane, with the element-wise operations the features need.
+struct Lanes {
+  double v[kLanes];
+};
+
+[[gnu::always_inline]] inline Lanes operator+(const Lanes& a, const Lanes& b) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] + b.v[l];
+  return r;
+}
+[[gnu::always_inline]] inline Lanes operator-(const Lanes& a, const Lanes& b) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] - b.v[l];
+  return r;
+}
+[[gnu::always_inline]] inline Lanes operator*(const Lanes& a, const Lanes& b) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] * b.v[l];
+  return r;
+}
+[[gnu::always_inline]] inline Lanes operator*(double s, const Lanes& a) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = s * a.v[l];
+  return r;
+}
+[[gnu::always_inline]] inline Lanes operator/(const Lanes& a, double s) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] / s;
+  return r;
+}
+[[gnu::always_inline]] inline Lanes lane_min(const Lanes& a, const Lanes& b) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = b.v[l] < a.v[l] ? b.v[l] : a.v[l];
+  return r;
+}
+[[gnu::always_inline]] inline Lanes lane_max(const Lanes& a, const Lanes& b) {  // std::max(a, b)
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
+  return r;
+}
+[[gnu::always_inline]] inline Lanes lane_sqrt(const Lanes& a) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = std::sqrt(a.v[l]);
+  return r;
+}
+[[gnu::always_inline]] inline Lanes lane_cbrt(const Lanes& a) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r.v[l] = std::cbrt(a.v[l]);
+  return r;
+}
+
+struct Vec3 {
+  Lanes c[3];
+};
+
+[[gnu::always_inline]] inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {{a.c[0] + b.c[0], a.c[1] + b.c[1], a.c[2] + b.c[2]}}; }
+[[gnu::always_inline]] inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}}; }
+[[gnu::always_inline]] inline Vec3 operator*(double s, const Vec3& a) { return {{s * a.c[0], s * a.c[1], s * a.c[2]}}; }
+[[gnu::always_inline]] inline Vec3 operator/(const Vec3& a, double s) { return {{a.c[0] / s, a.c[1] / s, a.c[2] / s}}; }
+[[gnu::always_inline]] inline Lanes dot(const Vec3& a, const Vec3& b) { return (a.c[0] * b.c[0] + a.c[1] * b.c[1]) + a.c[2] * b.c[2]; }
+[[gnu::always_inline]] inline Lanes dot(const Vec3& a, const double* s) {
+  return (s[0] * a.c[0] + s[1] * a.c[1]) + s[2] * a.c[2];  // the products commute exactly
+}
+[[gnu::always_inline]] inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
+}
+[[gnu::always_inline]] inline Lanes norm(const Vec3& a) { return lane_sqrt(dot(a, a)); }
+
+// The block's pairs: x[time][point], is_edge_edge per lane (1 or 0).
+struct PairBlock {
+  Vec3 x[2][4];
+  Lanes is_edge_edge;
+};
+
+// max(smallest, -largest) of `n` lanes-values: same_sign_margin of the per-pair code.
+[[gnu::always_inline]] inline Lanes same_sign_margin(const Lanes* values, int n) {
+  Lanes lo = values[0], hi = values[0];
+  for (int k = 1; k < n; ++k) {
+    lo = lane_min(lo, values[k]);
+    hi = lane_max(hi, values[k]);
+  }
+  Lanes minus_hi;
+  for (int l = 0; l < kLanes; ++l) minus_hi.v[l] = -hi.v[l];
+  return lane_max(lo, minus_hi);
+}
+
+// Lanes of `edge_edge` where the mask is 1, of `vertex_face` elsewhere.
+[[gnu::always_inline]] inline Vec3 select(const Lanes& mask, const Vec3& edge_edge, const Vec3& vertex_face) {
+  Vec3 r;
+  for (int c = 0; c < 3; ++c)
+    for (int l = 0; l < kLanes; ++l) r.c[c].v[l] = mask.v[l] != 0.0 ? edge_edge.c[c].v[l] : vertex_face.c[c].v[l];
+  return r;
+}
+
+// The differences whose projections are the gaps of the projection filter, at both times: vertex-face, point 0 minus
+// points 1, 2, 3 and the last once more; edge-edge, points 0, 1 minus points 2, 3 (a repeated gap changes neither
+// extreme of the gaps).
+struct GapVectors {
+  Vec3 d[2][4];
+};
+
+[[gnu::always_inline]] inline GapVectors gap_vectors(const PairBlock& b) {
+  GapVectors g;
+  for (int t = 0; t < 2; ++t) {
+    const Vec3* x = b.x[t];
+    g.d[t][0] = select(b.is_edge_edge, x[0] - x[2], x[0] - x[1]);
+    g.d[t][1] = select(b.is_edge_edge, x[0] - x[3], x[0] - x[2]);
+    g.d[t][2] = select(b.is_edge_edge, x[1] - x[2], x[0] - x[3]);
+    g.d[t][3] = select(b.is_edge_edge, x[1] - x[3], x[0] - x[3]);
+  }
+  return g;
+}
+
+// same_sign_margin of the gaps along direction s.
+[[gnu::always_inline]] inline Lanes projection_margin(const GapVectors& g, const double* s) {
+  Lanes gaps[8];
+  for (int t = 0; t < 2; ++t)
+    for (int j = 0; j < 4; ++j) gaps[4 * t + j] = dot(g.d[t][j], s);
+  return same_sign_margin(gaps, 8);
+}
+
+const double kDirections[5][3] = {{1.0, 0.0, 0.0},
+                                  {std::sqrt(0.5), std::sqrt(0.5), 0.0},
+                                  {std::sqrt(0.5), 0.0, std::sqrt(0.5)},
+                                  {0.0, std::sqrt(0.5), std::sqrt(0.5)},
+                                  {std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0)}};
+
+// Features of one block (all lanes filled) into out[f][lane] for f < kMaxPairFeatures.
+[[gnu::always_inline]] inline void block_features(const PairBlock& b, std::size_t features,
+                                                  double (&out)[kMaxPairFeatures][kLanes]) {
+  const Vec3* s = b.x[0];
+  const Vec3* e = b.x[1];
+  // Pair size: the diagonal of the box around the eight positions.
+  Vec3 lo = s[0], hi = s[0];
+  for (int k = 0; k < 4; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      lo.c[c] = lane_min(lane_min(lo.c[c], s[k].c[c]), e[k].c[c]);
+      hi.c[c] = lane_max(lane_max(hi.c[c], s[k].c[c]), e[k].c[c]);
+    }
+  }
+  const Lanes size = norm(hi - lo);
+  Lanes length_scale, volume_scale;
+  for (int l = 0; l < kLanes; ++l) {
+    length_scale.v[l] = 1.0 / size.v[l];
+    volume_scale.v[l] = length_scale.v[l] * length_scale.v[l] * length_scale.v[l];
+  }
+  // Bernstein coefficients of the coplanarity cubic.
+  const Vec3 a1 = s[1] - s[0], a2 = s[2] - s[0], a3 = s[3] - s[0];
+  const Vec3 v1 = (e[1] - e[0]) - a1, v2 = (e[2] - e[0]) - a2, v3 = (e[3] - e[0]) - a3;
+  const Lanes c0 = dot(cross(a1, a2), a3);
+  const Lanes c1 = dot(cross(v1, a2), a3) + dot(cross(a1, v2), a3) + dot(cross(a1, a2), v3);
+  const Lanes c2 = dot(cross(v1, v2), a3) + dot(cross(v1, a2), v3) + dot(cross(a1, v2), v3);
+  const Lanes c3 = dot(cross(v1, v2), v3);
+  const Lanes bernstein[4] = {c0, c0 + c1 / 3.0, c0 + (2.0 * c1 + c2) / 3.0, c0 + c1 + c2 + c3};
+  const Lanes algebraic = lane_cbrt(same_sign_margin(bernstein, 4) * volume_scale);
+  Lanes best;
+  for (int l = 0; l < kLanes; ++l) best.v[l] = -1.0;
+  Lanes projections[5];
+  const GapVectors gaps = gap_vectors(b);
+  for (int d = 0; d < 5; ++d) {
+    const Lanes margin = projection_margin(gaps, kDirections[d]) * length_scale;
+    for (int l = 0; l < kLanes; ++l)
+      projections[d].v[l] = std::copysign(std::sqrt(std::abs(margin.v[l])), margin.v[l]);
+    best = lane_max(best, projections[d]);
+  }
+  // Relative motion: spread of the four displacements around their mean.
+  Vec3 mean_motion;
+  for (int c = 0; c < 3; ++c)
+    for (int l = 0; l < kLanes; ++l) mean_motion.c[c].v[l] = 0.0;
+  for (int k = 0; k < 4; ++k) mean_motion = mean_motion + 0.25 * (e[k] - s[k]);
+  Lanes motion_squared;
+  for (int l = 0; l < kLanes; ++l) motion_squared.v[l] = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 d = (e[k] - s[k]) - mean_motion;
+    motion_squared = motion_squared + dot(d, d);
+  }
+  const Lanes motion = lane_sqrt(0.25 * motion_squared) * length_scale;
+  // Centre gap at the start: vertex to triangle centroid, or edge midpoint to edge midpoint.
+  const Vec3 vf_gap = s[0] - (s[1] + s[2] + s[3]) / 3.0;
+  const Vec3 ee_gap = 0.5 * (s[0] + s[1]) - 0.5 * (s[2] + s[3]);
+  const Lanes vf_centre = norm(vf_gap) * length_scale, ee_centre = norm(ee_gap) * length_scale;
+
+  for (int l = 0; l < kLanes; ++l) {
+    double all[kMaxPairFeatures] = {};
+    if (size.v[l] > 0.0) {
+      all[1] = algebraic.v[l];
+      for (int d = 0; d < 5; ++d) all[3 + d] = projections[d].v[l];
+      all[2] = best.v[l];
+      all[0] = std::max(all[1], all[2]);
+      for (int k = 0; k < 4; ++k) all[8 + k] = bernstein[k].v[l] * volume_scale.v[l];
+      all[12] = motion.v[l];
+      all[13] = b.is_edge_edge.v[l] != 0.0 ? ee_centre.v[l] : vf_centre.v[l];
+    }
+    all[14] = b.is_edge_edge.v[l];
+    for (std::size_t f = 0; f < features && f < 15; ++f) out[f][l] = all[f];
+  }
+  // Cube roots of the Bernstein coefficients (zero-size lanes keep 0: cbrt(0) = 0).
+  for (int k = 0; k < 4 && 8 + static_cast<std::size_t>(k) < features; ++k)
+    for (int l = 0; l < kLanes; ++l) out[8 + k][l] = std::cbrt(out[8 + k][l]);
+}
+
+[[gnu::always_inline]] inline void blocks(const PairGeometry* pairs, std::size_t count, std::size_t features,
+                                          PairFeatureBatch& batch) {
+  const std::size_t dense = std::min<std::size_t>(features, 15);
+  for (std::size_t first = 0; first < count; first += kLanes) {
+    const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
+    PairBlock b;
+    for (int l = 0; l < kLanes; ++l) {
+      const PairGeometry& p = pairs[first + static_cast<std::size_t>(l < used ? l : 0)];
+      for (int k = 0; k < 4; ++k) {
+        for (int c = 0; c < 3; ++c) {
+          b.x[0][k].c[c].v[l] = p.start[k][c];
+          b.x[1][k].c[c].v[l] = p.end[k][c];
+        }
+      }
+      b.is_edge_edge.v[l] = p.kind == PairType::EdgeEdge ? 1.0 : 0.0;
+    }
+    double out[kMaxPairFeatures][kLanes];
+    block_features(b, features, out);
+    for (int l = 0; l < used; ++l) {
+      const std::size_t i = first + static_cast<std::size_t>(l);
+      if (!pair_coordinates_finite(pairs[i])) {
+        for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
+      for (std::size_t f = 0; f < dense; ++f) batch.values[f * count + i] = out[f][l];
+      if (features > 15) {  // the extra features, per pair
+        double row[kMaxPairFeatures];
+        compute_pair_features(pairs[i], FeatureSettings{features}, row);
+        for (std::size_t f = 15; f < features; ++f) batch.values[f * count + i] = row[f];
+      }
+    }
+  }
+}
+
+void blocks_baseline(const PairGeometry* pairs, std::size_t count, std::size_t features, PairFeatureBatch& batch) {
+  blocks(pairs, count, features, batch);
+}
+
+#if defined(CLOTHCD_AVX2_PATHS)
+__attribute__((target("avx2"))) void blocks_avx2(const PairGeometry* pairs, std::size_t count, std::size_t features,
+                                                 PairFeatureBatch& batch) {
+  blocks(pairs, count, features, batch);
+}
+__attribute__((target("avx512f"))) void blocks_avx512(const PairGeometry* pairs, std::size_t count,
+                                                      std::size_t features, PairFeatureBatch& batch) {
+  blocks(pairs, count, features, batch);
+}
+#endif
+
+}  // namespace
+
+bool pair_coordinates_finite(const PairGeometry& pair) {
+  double coordinate_sum = 0.0;
+  for (std::size_t k = 0; k < 4; ++k) coordinate_sum += pair.start[k].sum() + pair.end[k].sum();
+  return std::isfinite(coordinate_sum);
+}
+
+void compute_feature_blocks(const PairGeometry* pairs, std::size_t count, std::size_t features, bool wide,
+                            PairFeatureBatch& batch) {
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (wide && avx512_supported()) return blocks_avx512(pairs, count, features, batch);
+  if (wide && avx2_supported()) return blocks_avx2(pairs, count, features, batch);
+#endif
+  (void)wide;
+  blocks_baseline(pairs, count, features, batch);
+}
+
+}  // namespace clothcd::learning::detail

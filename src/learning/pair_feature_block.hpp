@@ -1,0 +1,21 @@
+#pragma once
+// The pair features of many pairs at once (compute_pair_features' batch form): blocks of pairs in structure-of-arrays
+// layout, each step of the per-pair code run lane by lane with the same IEEE operations in the same order, so that the
+// compiler vectorizes the lane loops and the features agree bit for bit with the per-pair function. Internal.
+
+#include <cstddef>
+
+#include "clothcd/learning/pair_features.hpp"
+
+namespace clothcd::learning::detail {
+
+/// Writes the first `features` (1..kMaxPairFeatures) features of pairs[0, count) into `batch` (already sized
+/// count x features): feature f of pair i at batch.values[f * count + i]. `wide` picks the AVX2 / AVX-512 build where
+/// the CPU has it (the results are the same).
+void compute_feature_blocks(const PairGeometry* pairs, std::size_t count, std::size_t features, bool wide,
+                            PairFeatureBatch& batch);
+
+/// Whether every coordinate sum of the pair is finite: the per-pair and the block code mark pairs failing it invalid.
+[[nodiscard]] bool pair_coordinates_finite(const PairGeometry& pair);
+
+}  // namespace clothcd::learning::detail

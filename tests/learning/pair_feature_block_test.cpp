@@ -1,0 +1,100 @@
+// The batch features (blocks of pairs, vectorized) against the per-pair features: bit for bit, on seeded random pairs
+// and degenerate ones, on every instruction set this CPU runs.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "clothcd/learning/pair_features.hpp"
+#include "learning/pair_feature_block.hpp"
+#include "learning/pair_test_data.hpp"
+
+using namespace clothcd::learning;
+
+namespace {
+
+// Degenerate pairs: a point, a tiny pair, a huge one, coplanar and parallel primitives, non-finite coordinates.
+std::vector<PairGeometry> degenerate_pairs() {
+  std::vector<PairGeometry> pairs;
+  std::mt19937_64 rng(5);
+  for (const PairType kind : {PairType::VertexFace, PairType::EdgeEdge}) {
+    PairGeometry point;
+    point.kind = kind;
+    for (std::size_t k = 0; k < 4; ++k) point.start[k] = point.end[k] = Eigen::Vector3d(1.0, -2.0, 3.0);
+    pairs.push_back(point);
+    for (const double scale : {1e-300, 1e-150, 1e150, 1e300}) {
+      PairGeometry p = test::random_pair(rng);
+      p.kind = kind;
+      for (std::size_t k = 0; k < 4; ++k) {
+        p.start[k] *= scale;
+        p.end[k] *= scale;
+      }
+      pairs.push_back(p);
+    }
+    PairGeometry flat = test::random_pair(rng);  // everything in the plane z = 0 for the whole step
+    flat.kind = kind;
+    for (std::size_t k = 0; k < 4; ++k) flat.start[k].z() = flat.end[k].z() = 0.0;
+    pairs.push_back(flat);
+    PairGeometry still = test::random_pair(rng);  // no motion
+    still.kind = kind;
+    still.end = still.start;
+    pairs.push_back(still);
+    PairGeometry parallel = still;  // edge 2-3 a copy of edge 0-1 moved along x
+    for (std::size_t k = 2; k < 4; ++k) parallel.start[k] = parallel.end[k] = still.start[k - 2] + Eigen::Vector3d(0.5, 0, 0);
+    pairs.push_back(parallel);
+    for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity()}) {
+      PairGeometry p = test::random_pair(rng);
+      p.kind = kind;
+      p.end[3].y() = bad;
+      pairs.push_back(p);
+    }
+    PairGeometry overflow = test::random_pair(rng);  // finite coordinates whose sum overflows
+    overflow.kind = kind;
+    for (std::size_t k = 0; k < 4; ++k) overflow.start[k].x() = overflow.end[k].x() = 1.5e308;
+    pairs.push_back(overflow);
+  }
+  return pairs;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+
+void check_against_per_pair(const std::vector<PairGeometry>& pairs, std::size_t features) {
+  for (const bool wide : {false, true}) {
+    PairFeatureBatch batch;
+    batch.resize(pairs.size(), features);
+    detail::compute_feature_blocks(pairs.data(), pairs.size(), features, wide, batch);
+    std::vector<double> row(features);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      compute_pair_features(pairs[i], FeatureSettings{features}, row.data());
+      for (std::size_t f = 0; f < features; ++f) {
+        INFO("pair " << i << " feature " << f << " wide " << wide << ": " << batch.column(f)[i] << " vs " << row[f]);
+        CHECK(same_bits(batch.column(f)[i], row[f]));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("batch features equal the per-pair features bit for bit", "[learning][features]") {
+  std::mt19937_64 rng(41);
+  std::vector<PairGeometry> pairs;
+  for (int i = 0; i < 3001; ++i) pairs.push_back(test::random_pair(rng));  // not a multiple of the block size
+  for (const std::size_t features : {std::size_t{15}, std::size_t{1}, std::size_t{9}, kMaxPairFeatures}) {
+    check_against_per_pair(pairs, features);
+  }
+  check_against_per_pair(degenerate_pairs(), 15);
+  check_against_per_pair(degenerate_pairs(), kMaxPairFeatures);
+}
+
+TEST_CASE("batch features of no pairs and of one pair", "[learning][features]") {
+  PairFeatureBatch batch;
+  compute_pair_features(nullptr, 0, FeatureSettings{}, batch);
+  CHECK(batch.rows == 0);
+  std::mt19937_64 rng(43);
+  check_against_per_pair({test::random_pair(rng)}, 15);
+}
