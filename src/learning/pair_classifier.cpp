@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "clothcd/cpu_features.hpp"
 #include "learning/opennn_backend.hpp"
 
 namespace clothcd::learning {
@@ -86,8 +87,10 @@ PairClassifier PairClassifier::load(const std::string& model, const FeatureSetti
 namespace {
 
 // Probabilities of rows [begin, begin + n) of the batch, n <= kBlock.
-void forward_block(const NetworkWeights& weights, const std::vector<std::size_t>& input_columns,
-                   const PairFeatureBatch& batch, std::size_t begin, std::size_t n, double* out) {
+[[gnu::always_inline]] inline void forward_rows(const NetworkWeights& weights,
+                                                const std::vector<std::size_t>& input_columns,
+                                                const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
+                                                double* out) {
   constexpr std::size_t kWidest = kMaxLayerNeurons > kMaxPairFeatures ? kMaxLayerNeurons : kMaxPairFeatures;
   double buffer_a[kWidest][kBlock];
   double buffer_b[kWidest][kBlock];
@@ -113,6 +116,38 @@ void forward_block(const NetworkWeights& weights, const std::vector<std::size_t>
     std::swap(in, result);
   }
   for (std::size_t i = 0; i < n; ++i) out[i] = clamp_probability(in[0][i]);
+}
+
+// forward_rows built for the baseline, AVX2 and AVX-512: the same IEEE operations in the same order (the library is
+// built without contraction into fused multiply-adds), so the same probabilities, more rows per instruction.
+void forward_baseline(const NetworkWeights& weights, const std::vector<std::size_t>& input_columns,
+                      const PairFeatureBatch& batch, std::size_t begin, std::size_t n, double* out) {
+  forward_rows(weights, input_columns, batch, begin, n, out);
+}
+
+#if defined(CLOTHCD_AVX2_PATHS)
+__attribute__((target("avx2"))) void forward_avx2(const NetworkWeights& weights,
+                                                  const std::vector<std::size_t>& input_columns,
+                                                  const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
+                                                  double* out) {
+  forward_rows(weights, input_columns, batch, begin, n, out);
+}
+
+__attribute__((target("avx512f"))) void forward_avx512(const NetworkWeights& weights,
+                                                       const std::vector<std::size_t>& input_columns,
+                                                       const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
+                                                       double* out) {
+  forward_rows(weights, input_columns, batch, begin, n, out);
+}
+#endif
+
+void forward_block(const NetworkWeights& weights, const std::vector<std::size_t>& input_columns,
+                   const PairFeatureBatch& batch, std::size_t begin, std::size_t n, double* out) {
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (avx512_supported()) return forward_avx512(weights, input_columns, batch, begin, n, out);
+  if (avx2_supported()) return forward_avx2(weights, input_columns, batch, begin, n, out);
+#endif
+  forward_baseline(weights, input_columns, batch, begin, n, out);
 }
 
 }  // namespace
