@@ -1,7 +1,7 @@
 // Pair features in blocks (see pair_feature_block.hpp). Every expression below is the per-pair code's
 // (pair_features.cpp) written lane by lane: the same operands, the same association, Eigen's order for its
 // expressions (a 3-vector dot product or squared norm is (x0 y0 + x1 y1) + x2 y2); minima and maxima may pick the
-// other of two equal zeros, which changes no feature value beyond the sign of a zero. Cube roots stay scalar calls.
+// other of two equal zeros, which changes no feature value beyond the sign of a zero.
 #include "learning/pair_feature_block.hpp"
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "clothcd/cpu_features.hpp"
+#include "learning/cube_root.hpp"
 
 namespace clothcd::learning::detail {
 namespace {
@@ -62,7 +63,7 @@ struct Lanes {
 }
 [[gnu::always_inline]] inline Lanes lane_cbrt(const Lanes& a) {
   Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = std::cbrt(a.v[l]);
+  for (int l = 0; l < kLanes; ++l) r.v[l] = cube_root(a.v[l]);
   return r;
 }
 
@@ -170,6 +171,8 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   const Lanes c3 = dot(cross(v1, v2), v3);
   const Lanes bernstein[4] = {c0, c0 + c1 / 3.0, c0 + (2.0 * c1 + c2) / 3.0, c0 + c1 + c2 + c3};
   const Lanes algebraic = lane_cbrt(same_sign_margin(bernstein, 4) * volume_scale);
+  Lanes bernstein_roots[4];
+  for (int k = 0; k < 4; ++k) bernstein_roots[k] = lane_cbrt(bernstein[k] * volume_scale);
   Lanes best;
   for (int l = 0; l < kLanes; ++l) best.v[l] = -1.0;
   Lanes projections[5];
@@ -204,16 +207,13 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
       for (int d = 0; d < 5; ++d) all[3 + d] = projections[d].v[l];
       all[2] = best.v[l];
       all[0] = std::max(all[1], all[2]);
-      for (int k = 0; k < 4; ++k) all[8 + k] = bernstein[k].v[l] * volume_scale.v[l];
+      for (int k = 0; k < 4; ++k) all[8 + k] = bernstein_roots[k].v[l];
       all[12] = motion.v[l];
       all[13] = b.is_edge_edge.v[l] != 0.0 ? ee_centre.v[l] : vf_centre.v[l];
     }
     all[14] = b.is_edge_edge.v[l];
     for (std::size_t f = 0; f < features && f < 15; ++f) out[f][l] = all[f];
   }
-  // Cube roots of the Bernstein coefficients (zero-size lanes keep 0: cbrt(0) = 0).
-  for (int k = 0; k < 4 && 8 + static_cast<std::size_t>(k) < features; ++k)
-    for (int l = 0; l < kLanes; ++l) out[8 + k][l] = std::cbrt(out[8 + k][l]);
 }
 
 [[gnu::always_inline]] inline void blocks(const PairGeometry* pairs, std::size_t count, std::size_t features,

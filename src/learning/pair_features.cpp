@@ -15,6 +15,7 @@
 
 #include <Eigen/Geometry>
 
+#include "learning/cube_root.hpp"
 #include "learning/pair_feature_block.hpp"
 
 namespace clothcd::learning {
@@ -112,7 +113,7 @@ void compute_pair_features(const PairGeometry& pair, const FeatureSettings& sett
     const std::array<double, 4> bernstein = coplanarity_bernstein(pair);
     // Cube roots of the volumes and signed square roots of the lengths keep the sign (the filters' decision at 0)
     // but spread the values near 0, where the decision is, over the min-max scaled range.
-    all[1] = std::cbrt(same_sign_margin(bernstein.data(), 4) * volume_scale);
+    all[1] = detail::cube_root(same_sign_margin(bernstein.data(), 4) * volume_scale);
     double best_projection = -1.0;
     for (int d = 0; d < 5; ++d) {
       double gaps[8];
@@ -123,7 +124,7 @@ void compute_pair_features(const PairGeometry& pair, const FeatureSettings& sett
     }
     all[2] = best_projection;
     all[0] = std::max(all[1], all[2]);
-    for (int k = 0; k < 4; ++k) all[8 + k] = std::cbrt(bernstein[static_cast<std::size_t>(k)] * volume_scale);
+    for (int k = 0; k < 4; ++k) all[8 + k] = detail::cube_root(bernstein[static_cast<std::size_t>(k)] * volume_scale);
     Eigen::Vector3d mean_motion = Eigen::Vector3d::Zero();
     for (int k = 0; k < 4; ++k) mean_motion += 0.25 * (pair.end[k] - pair.start[k]);
     double motion_squared = 0.0;
