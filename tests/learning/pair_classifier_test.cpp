@@ -161,3 +161,49 @@ TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
   });
   CHECK_THROWS_WITH(PairClassifier::load(broken_card), Catch::Contains("card.json") && Catch::Contains("malformed"));
 }
+
+namespace {
+
+// `text` with the contents of the first <tag> element replaced by `value`.
+std::string with_element(const std::string& text, const std::string& tag, const std::string& value) {
+  const std::size_t begin = text.find("<" + tag + ">") + tag.size() + 2;
+  return text.substr(0, begin) + value + text.substr(text.find("</" + tag + ">", begin));
+}
+
+}  // namespace
+
+TEST_CASE("model files whose sizes disagree are clear errors before OpenNN reads them", "[learning][runtime]") {
+  const auto expect = [](const std::string& dir, const char* words) {
+    CHECK_THROWS_WITH(PairClassifier::load(dir), Catch::Contains("network.xml") && Catch::Contains(words));
+  };
+  expect(edited_model("short_params", "network.xml", [](const std::string& text) {
+           const std::size_t begin = text.find("<Parameters>") + std::string("<Parameters>").size();
+           return text.substr(0, begin) + text.substr(text.find(' ', begin) + 1);  // one number fewer
+         }),
+         "architecture needs");
+  expect(edited_model("long_params", "network.xml", [](const std::string& text) {
+           const std::size_t begin = text.find("<Parameters>") + std::string("<Parameters>").size();
+           return text.substr(0, begin) + "0.5 " + text.substr(begin);  // one number more
+         }),
+         "architecture needs");
+  expect(edited_model("huge_inputs", "network.xml",
+                      [](const std::string& text) { return with_element(text, "InputsNumber", "99999999999"); }),
+         "InputsNumber");
+  expect(edited_model("negative_inputs", "network.xml",
+                      [](const std::string& text) { return with_element(text, "InputsNumber", "-1"); }),
+         "InputsNumber");
+  expect(edited_model("zero_layer", "network.xml", [](const std::string& text) {
+           const std::size_t begin = text.find("<Architecture>") + std::string("<Architecture>").size();
+           const std::string widths = text.substr(begin, text.find("</Architecture>") - begin);
+           return with_element(text, "Architecture", widths.substr(0, widths.find(' ')) + " 0 1");
+         }),
+         "Architecture");
+  expect(edited_model("activation", "network.xml",
+                      [](const std::string& text) { return with_element(text, "LayersActivationFunction", "Foo Logistic"); }),
+         "activation");
+  expect(edited_model("scaling_neuron", "network.xml", [](const std::string& text) {
+           const std::size_t begin = text.find("<ScalingNeuron ");
+           return text.substr(0, begin) + text.substr(text.find("</ScalingNeuron>", begin) + 16);
+         }),
+         "ScalingNeuron");
+}
