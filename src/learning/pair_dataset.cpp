@@ -196,8 +196,10 @@ PairDataset rebalance_training_rows(const PairDataset& dataset, double ratio, un
   const int minority = by_class[0].size() <= by_class[1].size() ? 0 : 1;
   std::vector<std::size_t>& majority = by_class[1 - minority];
   seeded_shuffle(majority, seed);
-  const auto keep = std::min(majority.size(),
-                             static_cast<std::size_t>(std::ceil(ratio * static_cast<double>(by_class[minority].size()))));
+  // Compared in double first: a huge ratio (or infinity) would overflow the conversion to a count.
+  const double wanted = std::ceil(ratio * static_cast<double>(by_class[minority].size()));
+  const std::size_t keep =
+      wanted >= static_cast<double>(majority.size()) ? majority.size() : static_cast<std::size_t>(wanted);
   std::vector<bool> kept(dataset.row_count(), true);
   for (std::size_t k = keep; k < majority.size(); ++k) kept[majority[k]] = false;
   PairDataset result;

@@ -18,8 +18,9 @@ double ms_since(Clock::time_point start) {
 }
 
 const SimulationSettings& checked(const SimulationSettings& s) {
-  if (!(s.dt > 0) || !std::isfinite(s.dt)) {
-    throw std::invalid_argument("time step dt must be positive and finite (got " + std::to_string(s.dt) + ")");
+  if (!(s.dt > 0) || !(s.dt <= kMaxTimeStep)) {
+    throw std::invalid_argument("time step dt must be above 0 and at most " + std::to_string(kMaxTimeStep) +
+                                " s (got " + std::to_string(s.dt) + ")");
   }
   if (!(s.response.thickness >= 0) || !std::isfinite(s.response.thickness)) {
     throw std::invalid_argument("thickness must be >= 0 and finite");

@@ -48,3 +48,32 @@ TEST_CASE("clothcd meshes fills the cache folder and writes an index", "[cli][mo
   CHECK(run.output.find("rabbit") != std::string::npos);
   CHECK(run.output.find("75408") != std::string::npos);
 }
+
+TEST_CASE("clothcd refuses out-of-range counts and seeds before they wrap or run for ever", "[cli][errors]") {
+  TempDir dir;
+  const std::string out = (dir / "out").string();
+  const std::string data = "'" + (dir / "none.csv").string() + "' --out '" + out + "'";
+  // Each command alone would wrap "-1" into 2^64 - 1 trials, pairs, rows or a seed, or accept an unusable value.
+  for (const std::string& args :
+       {"train " + data + " --trials -1", "train " + data + " --trials 1000000000", "train " + data + " --random-pairs -1",
+        "train " + data + " --seed -1", "train " + data + " --max-epochs -5", "train " + data + " --max-neurons 65",
+        "train " + data + " --rebalance 1e20", "gen-dataset --out '" + out + ".csv' --max-rows -1",
+        "gen-dataset --out '" + out + ".csv' --seeds 1,-1", "gen-dataset --out '" + out + ".csv' --seed 18446744073709551616",
+        "gen-dataset --out '" + out + ".csv' --steps 0", "simulate --scene box --resolution -5 --out '" + out + "'",
+        "simulate --scene box --cloth D --resolution 5 --out '" + out + "'",
+        "simulate --scene box --dt 1e10 --out '" + out + "'"}) {
+    INFO(args);
+    const auto run = run_cli(args);
+    CHECK(run.exit_code != 0);
+    // The message names the option (or, for dt, the setting).
+    CHECK((run.output.find("--") != std::string::npos || run.output.find("time step dt") != std::string::npos));
+  }
+}
+
+TEST_CASE("clothcd ccd on an empty query file is an error", "[cli][errors][ccd]") {
+  TempDir dir;
+  clothcd::test::write_file(dir / "empty.csv", "");
+  const auto run = run_cli("ccd '" + (dir / "empty.csv").string() + "' --type vf");
+  CHECK(run.exit_code == 1);
+  CHECK(run.output.find("no queries") != std::string::npos);
+}

@@ -130,7 +130,8 @@ TEST_CASE("the same run gives the same state hash", "[simulation][determinism]")
 
 TEST_CASE("bad simulation input fails with a clear message", "[simulation][bad-input]") {
   const Scene scene = scene_named("box");
-  for (const double dt : {0.0, -0.01, std::numeric_limits<double>::quiet_NaN()}) {
+  for (const double dt : {0.0, -0.01, std::numeric_limits<double>::quiet_NaN(), 1.5, 1e10,
+                          std::numeric_limits<double>::infinity()}) {
     SimulationSettings settings;
     settings.dt = dt;
     CHECK_THROWS_WITH(Simulator(scene, settings), Catch::Contains("dt"));
@@ -172,7 +173,7 @@ TEST_CASE("clothcd simulate rejects dt = 0 and a negative contact reach with a o
   const auto dir = std::filesystem::temp_directory_path() / "clothcd-simulate-bad";
   const auto err = dir.string() + ".err";
   using OptionAndWord = std::pair<std::string, std::string>;
-  const OptionAndWord cases[] = {{"--dt 0", "dt"}, {"--contact-reach -1", "contact_reach"}};
+  const OptionAndWord cases[] = {{"--dt 0", "dt"}, {"--dt 1e10", "dt"}, {"--contact-reach -1", "contact_reach"}};
   for (const auto& [option, word] : cases) {
     const std::string command = std::string(CLOTHCD_CLI_PATH) + " simulate --scene box " + option + " --out " +
                                 dir.string() + " > /dev/null 2> " + err;

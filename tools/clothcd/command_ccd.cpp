@@ -242,7 +242,9 @@ void run_ccd(const CcdCommandOptions& options) {
     add_to_summary(records, keep, results, settings, summary, per_query);
     if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
   }
-  summary.ns_per_query = summary.queries == 0 ? 0.0 : elapsed_ns / static_cast<double>(summary.queries);
+  // An empty file or a folder of empty files is most likely a wrong path or a failed export: say so.
+  if (summary.queries == 0) throw std::runtime_error(options.path + ": no queries (empty query files)");
+  summary.ns_per_query = elapsed_ns / static_cast<double>(summary.queries);
   print_summary(options, summary);
 }
 

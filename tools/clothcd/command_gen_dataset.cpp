@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -84,17 +85,20 @@ void add_gen_dataset_command(CLI::App& app) {
   command->add_option("--cloths", options->cloths, "Cloths A, B, C, comma separated")->delimiter(',')
       ->capture_default_str();
   command->add_option("--seeds", options->seeds, "One run per seed (shifts the cloth), comma separated")
-      ->delimiter(',')->capture_default_str();
-  command->add_option("--steps", s.steps, "Steps per run")->capture_default_str();
+      ->delimiter(',')->check(kSeedNumber)->capture_default_str();
+  command->add_option("--steps", s.steps, "Steps per run")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()))->capture_default_str();
   command->add_option("--dt", s.dt, "Step, seconds (0: scene default)")->capture_default_str();
-  command->add_option("--max-rows", s.max_rows, "At most N rows (sampled uniformly, seeded)")->capture_default_str();
+  command->add_option("--max-rows", s.max_rows, "At most N rows (sampled uniformly, seeded)")
+      ->check(CLI::Range(1, 1000000000))->capture_default_str();
   command->add_option("--rebalance", options->rebalance,
                       "Keep at most RATIO x the minority filter class of the training rows (0: off)")
-      ->capture_default_str();
+      ->check(CLI::Range(0.0, 1e6))->capture_default_str();
   command->add_flag("--keep-collisions", s.keep_collisions,
                     "Also keep every candidate the exact CCD finds colliding (never trimmed)");
   command->add_option("--features", s.features.count, "Feature count")->capture_default_str();
-  command->add_option("--seed", s.seed, "Seed of the sampling and the 60/20/20 split")->capture_default_str();
+  command->add_option("--seed", s.seed, "Seed of the sampling and the 60/20/20 split")
+      ->check(kSeedNumber)->capture_default_str();
   command->add_option("--model-dir", s.model_dir, "Cache folder of the obstacle models");
   command->callback([options] { run_gen_dataset(*options); });
 }

@@ -242,8 +242,10 @@ void add_simulate_command(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   command->add_option("--scene", options->scene, "box, character, walker, rabbit, cat, dinosaur, human, bird, sphere, "
                                                  "cube, fish, or file (with --model)");
-  command->add_option("--cloth", options->cloth, "The paper's cloth: A (20x20), B (30x30), C (50x50)");
-  command->add_option("--resolution", options->resolution, "N x N cloth vertices instead of --cloth");
+  command->add_option("--cloth", options->cloth, "The paper's cloth: A (20x20), B (30x30), C (50x50)")
+      ->check(CLI::IsMember({"A", "B", "C"}));
+  command->add_option("--resolution", options->resolution, "N x N cloth vertices instead of --cloth")
+      ->check(CLI::Range(2, simulation::kMaxResolution));
   command->add_option("--steps", options->steps, "Number of steps (default: the scene's)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   command->add_option("--dt", options->dt, "Step in seconds (default 0.005)");

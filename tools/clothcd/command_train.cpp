@@ -7,6 +7,7 @@
 #include <string>
 
 #include "clothcd/learning/network_training.hpp"
+#include "clothcd/learning/pair_classifier.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/learning/random_pairs.hpp"
 #include "commands.hpp"
@@ -73,17 +74,23 @@ void add_train_command(CLI::App& app) {
   auto options = std::make_shared<TrainOptions>();
   command->add_option("DATASET", options->dataset, "Pair data set CSV (datasets/README.md)")->required();
   command->add_option("--out", options->out, "Output model directory, e.g. models/NAME")->required();
-  command->add_option("--max-neurons", options->settings.max_neurons, "Search 1..N hidden neurons")->capture_default_str();
-  command->add_option("--trials", options->settings.trials, "Trainings per neuron count")->capture_default_str();
-  command->add_option("--seed", options->settings.seed, "Seed (same seed, same model)")->capture_default_str();
+  // Ranges on the text (before the conversion, where "-1" would wrap around an unsigned type).
+  command->add_option("--max-neurons", options->settings.max_neurons, "Search 1..N hidden neurons")
+      ->check(CLI::Range(std::size_t{1}, learning::kMaxLayerNeurons))->capture_default_str();
+  command->add_option("--trials", options->settings.trials, "Trainings per neuron count")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
+  command->add_option("--seed", options->settings.seed, "Seed (same seed, same model)")
+      ->check(kSeedNumber)->capture_default_str();
   command->add_option("--max-epochs", options->settings.max_epochs, "Quasi-Newton iterations per training")
-      ->capture_default_str();
+      ->check(CLI::Range(1, 1000000))->capture_default_str();
   command->add_option("--threshold", options->settings.decision_threshold, "Decision threshold of the binary layer")
       ->capture_default_str();
   command->add_option("--rebalance", options->rebalance,
-                      "Keep at most RATIO x the minority class of the training rows (0: off)")->capture_default_str();
+                      "Keep at most RATIO x the minority class of the training rows (0: off)")
+      ->check(CLI::Range(0.0, 1e6))->capture_default_str();
   command->add_option("--random-pairs", options->random_pairs,
-                      "First write N seeded random CCD pairs (labelled by the CCD filters and exact CCD) to DATASET");
+                      "First write N seeded random CCD pairs (labelled by the CCD filters and exact CCD) to DATASET")
+      ->check(CLI::Range(1, 100000000));
   command->callback([options] { run_train(*options); });
 }
 

@@ -5,6 +5,15 @@
 
 namespace clothcd::cli {
 
+/// A check that an option's text is a whole number >= 0 below 2^64 (an unsigned option would take "-1" as 2^64 - 1).
+inline const CLI::Validator kSeedNumber(
+    [](std::string& text) {
+      const bool digits = !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
+      return digits && (text.size() < 20 || text <= "18446744073709551615") ? std::string()
+                                                                          : "must be a whole number from 0 to 2^64 - 1";
+    },
+    "SEED");
+
 /// Adds `clothcd info MESH`.
 void add_info_command(CLI::App& app);
 /// Adds `clothcd convert IN OUT`.

@@ -16,9 +16,13 @@
 
 namespace clothcd::simulation {
 
+/// Longest time step a simulation accepts, seconds: far beyond any useful cloth step (the paper's is 5 ms), while
+/// absurd steps (1e10 s) are refused instead of sending the cloth to 1e12 m.
+inline constexpr double kMaxTimeStep = 1.0;
+
 /// Everything that tunes a run.
 struct SimulationSettings {
-  double dt = 0.005;                 ///< Step, seconds (> 0, finite).
+  double dt = 0.005;                 ///< Step, seconds (0 < dt <= kMaxTimeStep).
   ClothSettings cloth;               ///< Cloth material.
   IntegratorSettings integrator;     ///< Linear solve.
   ResponseSettings response;         ///< Thickness, friction, rounds; its thickness also goes to the detector.
