@@ -19,6 +19,7 @@
 
 #include "clothcd/mesh/mesh_error.hpp"
 #include "clothcd/mesh/mesh_validation.hpp"
+#include "mesh/text_mesh_check.hpp"
 
 namespace clothcd {
 namespace {
@@ -210,6 +211,8 @@ void save_ascii_ply(const TriangleMesh& mesh, std::ofstream& out) {
 TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadReport* report) {
   check_readable_file(path);
   check_ply_header(path);
+  detail::check_off_body(path);
+  detail::check_ascii_ply_body(path);
   LoadReport local_report;
   const std::lock_guard<std::mutex> lock(import_mutex());
   const ScopedErrorLog log;

@@ -55,7 +55,7 @@ void require_same_mesh(const TriangleMesh& saved, const TriangleMesh& loaded, bo
   REQUIRE((expected.vertices - loaded.vertices).cwiseAbs().maxCoeff() <= scale * 1e-6);
 }
 
-std::string ply_header(int vertices, int faces) {
+std::string ply_header(long long vertices, int faces) {
   return "ply\nformat ascii 1.0\nelement vertex " + std::to_string(vertices) +
          "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces) +
          "\nproperty list uchar int vertex_indices\nend_header\n";
@@ -169,6 +169,24 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
   }
   SECTION("out-of-range index in OFF (which assimp would clamp silently)") {
     require_load_error(write_file(dir / "index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n"), "out of range");
+  }
+  SECTION("negative and wrapping indices in OFF") {
+    require_load_error(write_file(dir / "negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 -1 1 2\n"), "out of range");
+    require_load_error(write_file(dir / "wrap.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967296\n"),
+                       "out of range");
+  }
+  SECTION("an OFF face of two vertices") {
+    require_load_error(write_file(dir / "two.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n"), "needs 3");
+  }
+  SECTION("an OFF body shorter than its counts (or a huge count)") {
+    require_load_error(write_file(dir / "short.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "truncated");
+    require_load_error(write_file(dir / "huge.off", "OFF\n3 99999999999 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                       "truncated");
+  }
+  SECTION("an ASCII PLY body shorter than its header") {
+    require_load_error(write_file(dir / "short.ply", ply_header(30, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "truncated");
+    require_load_error(write_file(dir / "huge.ply", ply_header(4000000000, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                       "truncated");
   }
   SECTION("no faces") { require_load_error(write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\n"), ""); }
   SECTION("only degenerate faces") {

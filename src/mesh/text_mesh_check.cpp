@@ -1,0 +1,106 @@
+// Checks of OFF and ASCII PLY bodies (see text_mesh_check.hpp).
+#include "mesh/text_mesh_check.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "clothcd/mesh/mesh_error.hpp"
+
+namespace clothcd::detail {
+namespace {
+
+// The next non-empty line without its # comment, split into tokens; false at the end of the file.
+bool next_tokens(std::istream& in, std::vector<std::string>& tokens) {
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    tokens.clear();
+    for (std::string word; words >> word;) tokens.push_back(word);
+    if (!tokens.empty()) return true;
+  }
+  return false;
+}
+
+// The whole number a token holds, or -1 when it holds none (or one beyond 2^62).
+long long whole_number(const std::string& token) {
+  if (token.empty() || token.find_first_not_of("+-0123456789") != std::string::npos) return -1;
+  errno = 0;
+  char* end = nullptr;
+  const long long value = std::strtoll(token.c_str(), &end, 10);
+  if (errno != 0 || end != token.c_str() + token.size() || value < 0 || value > (1LL << 62)) return -1;
+  return value;
+}
+
+}  // namespace
+
+void check_off_body(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> tokens;
+  if (!next_tokens(in, tokens) || tokens[0] != "OFF") return;  // not plain OFF: assimp decides
+  const std::string file = path.string();
+  tokens.erase(tokens.begin());  // the counts may follow OFF on its line
+  if (tokens.empty() && !next_tokens(in, tokens)) throw MeshError(file, "OFF file ends before its counts");
+  const long long vertices = whole_number(tokens[0]);
+  const long long faces = tokens.size() > 1 ? whole_number(tokens[1]) : -1;
+  if (vertices < 0 || faces < 0) throw MeshError(file, "OFF counts are not whole numbers >= 0");
+  for (long long v = 0; v < vertices; ++v) {
+    if (!next_tokens(in, tokens) || tokens.size() < 3)
+      throw MeshError(file, "OFF file ends (or a vertex line is short) at vertex " + std::to_string(v) + " of " +
+                                std::to_string(vertices) + " declared (truncated file or wrong count)");
+  }
+  for (long long f = 0; f < faces; ++f) {
+    if (!next_tokens(in, tokens))
+      throw MeshError(file, "OFF file ends at face " + std::to_string(f) + " of " + std::to_string(faces) +
+                                " declared (truncated file or wrong count)");
+    const long long corners = whole_number(tokens[0]);
+    if (corners < 3) throw MeshError(file, "OFF face " + std::to_string(f) + " has " + tokens[0] + " vertices, a face needs 3 or more");
+    if (static_cast<long long>(tokens.size()) < corners + 1)
+      throw MeshError(file, "OFF face " + std::to_string(f) + " lists fewer than its " + tokens[0] + " vertex indices");
+    for (long long k = 1; k <= corners; ++k) {
+      const long long index = whole_number(tokens[static_cast<std::size_t>(k)]);
+      if (index < 0 || index >= vertices)
+        throw MeshError(file, "OFF face " + std::to_string(f) + " has vertex index '" + tokens[static_cast<std::size_t>(k)] +
+                                  "', out of range 0.." + std::to_string(vertices - 1));
+    }
+  }
+}
+
+void check_ascii_ply_body(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;
+  long long declared = 0;
+  bool ascii = false;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string keyword, name, count;
+    words >> keyword;
+    if (keyword == "format") {
+      words >> name;
+      ascii = name == "ascii";
+    } else if (keyword == "element") {
+      words >> name >> count;
+      const long long n = whole_number(count);
+      if (n < 0) throw MeshError(path.string(), "PLY element '" + name + "' has count '" + count + "', not a whole number");
+      declared += n;
+    } else if (keyword == "end_header") {
+      break;
+    }
+  }
+  if (!ascii) return;
+  long long lines = 0;
+  while (lines < declared && std::getline(in, line)) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+  }
+  if (lines < declared)
+    throw MeshError(path.string(), "PLY body holds " + std::to_string(lines) + " element lines, its header declares " +
+                                       std::to_string(declared) + " (truncated file or wrong count)");
+}
+
+}  // namespace clothcd::detail
