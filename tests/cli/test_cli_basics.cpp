@@ -49,7 +49,7 @@ TEST_CASE("clothcd meshes fills the cache folder and writes an index", "[cli][mo
   CHECK(run.output.find("75408") != std::string::npos);
 }
 
-TEST_CASE("clothcd refuses out-of-range counts and seeds before they wrap or run for ever", "[cli][errors]") {
+TEST_CASE("clothcd refuses out-of-range numbers before they wrap, run for ever or reach the library", "[cli][errors]") {
   TempDir dir;
   const std::string out = (dir / "out").string();
   const std::string data = "'" + (dir / "none.csv").string() + "' --out '" + out + "'";
@@ -61,7 +61,9 @@ TEST_CASE("clothcd refuses out-of-range counts and seeds before they wrap or run
         "gen-dataset --out '" + out + ".csv' --seeds 1,-1", "gen-dataset --out '" + out + ".csv' --seed 18446744073709551616",
         "gen-dataset --out '" + out + ".csv' --steps 0", "simulate --scene box --resolution -5 --out '" + out + "'",
         "simulate --scene box --cloth D --resolution 5 --out '" + out + "'",
-        "simulate --scene box --dt 1e10 --out '" + out + "'"}) {
+        "simulate --scene box --dt 1e10 --out '" + out + "'", std::string("simplify in.off out.obj --ratio -0.5"),
+        std::string("simplify in.off out.obj --ratio nan"), std::string("simplify in.off out.obj --max-error inf"),
+        std::string("obb in.off --method adaptive-simplified --simplify nan")}) {
     INFO(args);
     const auto run = run_cli(args);
     CHECK(run.exit_code != 0);

@@ -49,7 +49,7 @@ void add_obb_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--simplify", settings->simplify_ratio,
                       "adaptive-simplified: fraction of the faces the simplified model keeps")
-      ->check(CLI::Range(1e-6, 1.0))
+      ->check(finite_number(0.0, 1.0, true))
       ->capture_default_str();
   command->add_option("--slabs", settings->slabs, "adaptive methods: slabs per axis")->check(CLI::Range(1, 256));
   command->add_flag("--json", *json, "Print one JSON object");

@@ -22,16 +22,17 @@ void add_simplify_command(CLI::App& app) {
   command->add_option("IN", *in, "Input mesh file")->required();
   command->add_option("OUT", *out, "Output file, .obj or .ply")->required();
   auto* ratio = command->add_option("--ratio", settings->target_ratio,
-                                    "Fraction of the faces to keep, in (0, 1] (0.1 = the paper's 90% simplified)");
+                                    "Fraction of the faces to keep, in (0, 1] (0.1 = the paper's 90% simplified)")
+                    ->check(finite_number(0.0, 1.0, true));
   auto* faces = command->add_option("--faces", settings->target_faces, "Number of faces to keep (at least 1)")
                     ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   auto* error = command->add_option("--max-error", settings->max_error,
                                     "Never contract a pair whose error exceeds this distance (model units)")
-                    ->check(CLI::NonNegativeNumber);
+                    ->check(finite_number(0.0, HUGE_VAL));
   ratio->excludes(faces);
   command->add_option("--non-edge-threshold", settings->non_edge_threshold,
                       "Also contract vertices closer than this distance that share no edge (model units)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_number(0.0, HUGE_VAL));
   command->add_flag("--hausdorff", *hausdorff, "Print the two-sided sampled Hausdorff distance to the input");
   command->callback([=] {
     if (ratio->count() + faces->count() + error->count() == 0)

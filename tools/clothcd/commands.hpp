@@ -3,7 +3,33 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
 namespace clothcd::cli {
+
+/// A check that an option's text is a finite number from `low` (excluded when `low_open`) up to `high` (no bound when
+/// infinite): NaN and infinities are refused, which CLI::Range lets through or prints as 309-digit bounds.
+inline CLI::Validator finite_number(double low, double high, bool low_open = false) {
+  std::ostringstream range;
+  if (std::isfinite(high)) {
+    range << "must be a finite number " << (low_open ? "above " : "from ") << low << (low_open ? " and at most " : " to ")
+          << high;
+  } else {
+    range << "must be a finite number " << (low_open ? "> " : ">= ") << low;
+  }
+  return CLI::Validator(
+      [low, high, low_open, message = range.str()](std::string& text) {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        const bool ok = !text.empty() && end == text.c_str() + text.size() && std::isfinite(value) &&
+                        (low_open ? value > low : value >= low) && value <= high;
+        return ok ? std::string() : message;
+      },
+      "NUMBER");
+}
 
 /// A check that an option's text is a whole number >= 0 below 2^64 (an unsigned option would take "-1" as 2^64 - 1).
 inline const CLI::Validator kSeedNumber(
