@@ -92,7 +92,13 @@ int main(int argc, char** argv) {
   std::string footer = "Sections:\n";
   for (const Section& s : sections) footer += "  " + s.name + ": " + s.summary + "\n";
   app.footer(footer);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help
+    std::cerr << "clothcd-bench: error: " << e.what() << " (see clothcd-bench --help)\n";
+    return 1;
+  }
 
   std::vector<Section> chosen;
   for (const Section& s : sections)

@@ -40,6 +40,20 @@ TEST_CASE("clothcd errors are one line on stderr with a non-zero exit", "[cli][e
   CHECK(run_cli("convert '" + (dir / "nan.obj").string() + "' '" + (dir / "out.obj").string() + "'").exit_code == 1);
 }
 
+TEST_CASE("command-line mistakes are one clothcd error line with exit code 1", "[cli][errors]") {
+  const auto unknown = run_cli("frobnicate x");
+  CHECK(unknown.exit_code == 1);
+  CHECK(unknown.output.rfind("clothcd: error: unknown command 'frobnicate' (commands: info, ", 0) == 0);
+  for (const char* args : {"", "info", "info a b", "info --bogus x", "simplify a b --ratio nan", "bench"}) {
+    INFO(args);
+    const auto run = run_cli(args);
+    CHECK(run.exit_code == 1);
+    CHECK(run.output.find("error: ") != std::string::npos);
+    CHECK(run.output.find('\n') == run.output.size() - 1);
+  }
+  CHECK(run_cli("info a b").output.find("clothcd: error: info: The following argument was not expected: b") == 0);
+}
+
 TEST_CASE("clothcd meshes fills the cache folder and writes an index", "[cli][models]") {
   TempDir dir;
   const auto run = run_cli("meshes --dir '" + (dir / "models").string() + "'");

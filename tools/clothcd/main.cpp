@@ -1,8 +1,29 @@
 // The clothcd program: one subcommand per task; any error ends with a one-line message on stderr and exit code 1.
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
+
+namespace {
+
+// A command-line mistake as one line: CLI11's message, an unknown command named as such, and where to look for help.
+std::string usage_error_message(CLI::App& app, int argc, char** argv, const CLI::ParseError& error) {
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (!first.empty() && first[0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      known = known || command->get_name() == first;
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    }
+    if (!known) return "unknown command '" + first + "' (commands: " + names + ")";
+    return first + ": " + error.what() + " (see clothcd " + first + " --help)";
+  }
+  return std::string(error.what()) + " (see clothcd --help)";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"clothcd: cloth collision detection (Jin et al.'s method, done safely)", "clothcd"};
@@ -21,8 +42,12 @@ int main(int argc, char** argv) {
   clothcd::cli::add_bench_command(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // `bench`: clothcd-bench has reported its error already
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help
+    std::cerr << "clothcd: error: " << usage_error_message(app, argc, argv, e) << '\n';
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "clothcd: error: " << e.what() << '\n';
     return 1;
