@@ -54,6 +54,18 @@ TEST_CASE("command-line mistakes are one clothcd error line with exit code 1", "
   CHECK(run_cli("info a b").output.find("clothcd: error: info: The following argument was not expected: b") == 0);
 }
 
+TEST_CASE("an empty item in a comma-separated list is an error, not skipped", "[cli][errors]") {
+  TempDir dir;
+  const std::string out = "gen-dataset --out '" + (dir / "pairs.csv").string() + "' --steps 1 ";
+  for (const char* list : {"--scenes box,,box", "--scenes box,", "--cloths ,A", "--seeds 1,,2"}) {
+    INFO(list);
+    const auto run = run_cli(out + list);
+    CHECK(run.exit_code == 1);
+    CHECK(run.output.find("empty item in the comma-separated list") != std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(dir / "pairs.csv"));
+}
+
 TEST_CASE("clothcd meshes fills the cache folder and writes an index", "[cli][models]") {
   TempDir dir;
   const auto run = run_cli("meshes --dir '" + (dir / "models").string() + "'");

@@ -18,9 +18,9 @@ namespace {
 
 struct GenDatasetOptions {
   std::string out;
-  std::vector<std::string> scenes{"box"};
-  std::vector<std::string> cloths{"A"};
-  std::vector<unsigned long long> seeds{1};
+  std::string scenes = "box";   // comma-separated lists
+  std::string cloths = "A";
+  std::string seeds = "1";
   double rebalance = 0.0;
   learning::DatasetGenerationSettings settings;
 };
@@ -40,13 +40,14 @@ double percent(std::size_t part, std::size_t whole) {
 
 void run_gen_dataset(GenDatasetOptions options) {
   learning::DatasetGenerationSettings& settings = options.settings;
-  settings.scenes = options.scenes;
+  settings.scenes = split_commas(options.scenes);
   settings.cloths.clear();
-  for (const std::string& c : options.cloths) {
+  for (const std::string& c : split_commas(options.cloths)) {
     if (c.size() != 1) throw std::invalid_argument("gen-dataset: unknown cloth '" + c + "' (use A, B or C)");
     settings.cloths.push_back(c[0]);
   }
-  settings.seeds = options.seeds;
+  settings.seeds.clear();
+  for (const std::string& seed : split_commas(options.seeds)) settings.seeds.push_back(std::stoull(seed));
   if (!(options.rebalance >= 0.0)) throw std::invalid_argument("gen-dataset: --rebalance must be >= 0");
   // Checked before the simulations, which can take minutes.
   const std::filesystem::path folder = std::filesystem::path(options.out).parent_path();
@@ -81,11 +82,12 @@ void add_gen_dataset_command(CLI::App& app) {
   auto options = std::make_shared<GenDatasetOptions>();
   learning::DatasetGenerationSettings& s = options->settings;
   command->add_option("--out", options->out, "Output CSV (datasets/README.md)")->required();
-  command->add_option("--scenes", options->scenes, "Scene names, comma separated")->delimiter(',')->capture_default_str();
-  command->add_option("--cloths", options->cloths, "Cloths A, B, C, comma separated")->delimiter(',')
-      ->capture_default_str();
+  command->add_option("--scenes", options->scenes, "Scene names, comma separated")
+      ->check(comma_list())->capture_default_str();
+  command->add_option("--cloths", options->cloths, "Cloths A, B, C, comma separated")
+      ->check(comma_list())->capture_default_str();
   command->add_option("--seeds", options->seeds, "One run per seed (shifts the cloth), comma separated")
-      ->delimiter(',')->check(kSeedNumber)->capture_default_str();
+      ->check(comma_list(true))->capture_default_str();
   command->add_option("--steps", s.steps, "Steps per run")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()))->capture_default_str();
   command->add_option("--dt", s.dt, "Step, seconds (0: scene default)")->capture_default_str();

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace clothcd::cli {
 
@@ -39,6 +40,32 @@ inline const CLI::Validator kSeedNumber(
                                                                           : "must be a whole number from 0 to 2^64 - 1";
     },
     "SEED");
+
+/// "a,b,c" split at its commas ("" gives one empty item).
+inline std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t begin = 0;
+  for (std::size_t comma = text.find(','); comma != std::string::npos; comma = text.find(',', begin)) {
+    items.push_back(text.substr(begin, comma - begin));
+    begin = comma + 1;
+  }
+  items.push_back(text.substr(begin));
+  return items;
+}
+
+/// A check that a comma-separated list has no empty item ("box,,box", a trailing comma), which CLI11's own splitting
+/// would drop silently; with `seeds`, every item must also pass kSeedNumber.
+inline CLI::Validator comma_list(bool seeds = false) {
+  return CLI::Validator(
+      [seeds](std::string& text) {
+        for (std::string item : split_commas(text)) {
+          if (item.empty()) return std::string("empty item in the comma-separated list '") + text + "'";
+          if (seeds && !kSeedNumber(item).empty()) return "'" + item + "' " + kSeedNumber(item);
+        }
+        return std::string();
+      },
+      seeds ? "SEED,..." : "NAME,...");
+}
 
 /// Adds `clothcd info MESH`.
 void add_info_command(CLI::App& app);
