@@ -41,3 +41,19 @@ TEST_CASE("clothcd obb prints the box, its volume and tau", "[geometry][cli]") {
   CHECK(tight.output.find("tau:          1\n") != std::string::npos);
   CHECK(test::run_cli("obb '" + (dir / "box.obj").string() + "' --method nonsense").exit_code != 0);
 }
+
+TEST_CASE("obb and simplify say how many zero-area faces they dropped; JSON paths are escaped", "[geometry][cli]") {
+  const test::TempDir dir;
+  // A tetrahedron plus one face with a repeated vertex index, in a file whose name needs JSON escapes.
+  const std::string name = "te\"tra\\x.off";
+  test::write_file(dir / name, "OFF\n4 5 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 0 1\n");
+  const std::string path = "'" + (dir / name).string() + "'";
+  const auto json = test::run_cli("obb " + path + " --json");
+  REQUIRE(json.exit_code == 0);
+  CHECK(json.output.find("te\\\"tra\\\\x.off\", ") != std::string::npos);
+  CHECK(json.output.find("\"degenerate_faces_dropped\": 1}") != std::string::npos);
+  CHECK(test::run_cli("obb " + path).output.find("dropped:      1 zero-area faces") != std::string::npos);
+  const auto simplified = test::run_cli("simplify " + path + " '" + (dir / "out.obj").string() + "' --ratio 0.5");
+  CHECK(simplified.exit_code == 0);
+  CHECK(simplified.output.find("dropped:      1 zero-area faces") != std::string::npos);
+}

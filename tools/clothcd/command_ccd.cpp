@@ -63,7 +63,7 @@ const char* state_name(ccd::CcdState state) {
 
 void print_summary(const CcdCommandOptions& options, const Summary& s) {
   if (options.json) {
-    std::cout << "{\"path\": \"" << options.path << "\", \"filter\": \"" << options.filter
+    std::cout << "{\"path\": " << json_string(options.path) << ", \"filter\": \"" << options.filter
               << "\", \"thickness\": " << options.thickness << ", \"queries\": " << s.queries
               << ", \"colliding\": " << s.colliding << ", \"conservative\": " << s.conservative
               << ", \"with_ground_truth\": " << s.with_truth << ", \"truth_colliding\": " << s.truth_colliding

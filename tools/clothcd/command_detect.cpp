@@ -79,7 +79,7 @@ void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& m
   long vf = 0, ee = 0;
   for (const Collision& c : collisions) (c.kind == PairKind::VertexFace ? vf : ee) += 1;
   out << std::setprecision(17);
-  out << "{\n  \"t0\": \"" << o.t0_path << "\",\n  \"t1\": \"" << o.t1_path << "\",\n"
+  out << "{\n  \"t0\": " << json_string(o.t0_path) << ",\n  \"t1\": " << json_string(o.t1_path) << ",\n"
       << "  \"vertices\": " << mesh.vertex_count() << ",\n  \"faces\": " << mesh.face_count() << ",\n"
       << "  \"thickness\": " << o.thickness << ",\n  \"bvh\": \"" << o.bvh << "\",\n  \"filter\": \"" << o.filter
       << "\",\n  \"counts\": {\"candidates_vertex_face\": " << s.candidates_vertex_face

@@ -27,12 +27,12 @@ std::string vector_text(const Eigen::Vector3d& v, bool json) {
 }
 
 // A mesh file, or a model of the catalog (fetched into the default model folder) when no such file exists.
-TriangleMesh load_file_or_model(const std::string& name) {
-  if (std::filesystem::exists(name)) return load_mesh(name);
+TriangleMesh load_file_or_model(const std::string& name, LoadReport& report) {
+  if (std::filesystem::exists(name)) return load_mesh(name, {}, &report);
   for (const ModelSource& model : model_catalog()) {
-    if (model.name == name) return load_mesh(fetch_model(name, default_model_dir()));
+    if (model.name == name) return load_mesh(fetch_model(name, default_model_dir()), {}, &report);
   }
-  return load_mesh(name);  // reports the missing file
+  return load_mesh(name, {}, &report);  // reports the missing file
 }
 
 }  // namespace
@@ -54,7 +54,8 @@ void add_obb_command(CLI::App& app) {
   command->add_option("--slabs", settings->slabs, "adaptive methods: slabs per axis")->check(CLI::Range(1, 256));
   command->add_flag("--json", *json, "Print one JSON object");
   command->callback([=] {
-    const TriangleMesh mesh = load_file_or_model(*path);
+    LoadReport report;
+    const TriangleMesh mesh = load_file_or_model(*path, report);
     const std::map<std::string, geometry::ObbMethod> methods = {
         {"covariance", geometry::ObbMethod::Covariance},
         {"adaptive", geometry::ObbMethod::FastAdaptive},
@@ -82,7 +83,7 @@ void add_obb_command(CLI::App& app) {
     std::ostringstream out;
     out << std::setprecision(10);
     if (j) {
-      out << "{\"mesh\": \"" << *path << "\", \"method\": \"" << *method << "\", \"center\": " << vector_text(box.center, j);
+      out << "{\"mesh\": " << json_string(*path) << ", \"method\": \"" << *method << "\", \"center\": " << vector_text(box.center, j);
       if (radius >= 0) {
         out << ", \"radius\": " << radius;
       } else {
@@ -91,7 +92,7 @@ void add_obb_command(CLI::App& app) {
       }
       out << ", \"volume\": " << volume << ", \"model_volume\": " << model_volume << ", \"tau\": ";
       if (model_volume > 0) out << tau; else out << "null";
-      out << ", \"time_ms\": " << ms << "}\n";
+      out << ", \"time_ms\": " << ms << ", \"degenerate_faces_dropped\": " << report.degenerate_faces_dropped << "}\n";
     } else {
       out << "method:       " << *method << "\ncenter:       " << vector_text(box.center, j) << '\n';
       if (radius >= 0) {
@@ -103,6 +104,8 @@ void add_obb_command(CLI::App& app) {
       out << "volume:       " << volume << "\nmodel volume: " << model_volume
           << (model_volume > 0 ? "" : "  (open or inside-out mesh: tau undefined)") << "\ntau:          " << tau
           << "\ntime:         " << ms << " ms\n";
+      if (report.degenerate_faces_dropped > 0)
+        out << "dropped:      " << report.degenerate_faces_dropped << " zero-area faces of the input file\n";
     }
     std::cout << out.str();
   });

@@ -37,13 +37,17 @@ void add_simplify_command(CLI::App& app) {
   command->callback([=] {
     if (ratio->count() + faces->count() + error->count() == 0)
       throw std::invalid_argument("simplify: give --ratio R or --faces N (or --max-error E)");
-    const TriangleMesh mesh = load_mesh(*in);
+    LoadReport report;
+    const TriangleMesh mesh = load_mesh(*in, {}, &report);
     const auto start = std::chrono::steady_clock::now();
     const geometry::SimplifyResult result = geometry::simplify_qem(mesh, *settings);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     save_mesh(result.mesh, *out);
     std::cout << "faces:        " << result.faces_before << " -> " << result.faces_after
-              << (result.reached_target ? "" : "  (target not reached: no valid contraction left)") << '\n'
+              << (result.reached_target ? "" : "  (target not reached: no valid contraction left)") << '\n';
+    if (report.degenerate_faces_dropped > 0)
+      std::cout << "dropped:      " << report.degenerate_faces_dropped << " zero-area faces of the input file\n";
+    std::cout
               << "vertices:     " << mesh.vertex_count() << " -> " << result.mesh.vertex_count() << '\n'
               << "time:         " << ms << " ms\n"
               << "max error:    " << result.max_error << " (largest contraction error, model units)\n";

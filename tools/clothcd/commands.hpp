@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -40,6 +41,24 @@ inline const CLI::Validator kSeedNumber(
                                                                           : "must be a whole number from 0 to 2^64 - 1";
     },
     "SEED");
+
+/// `text` as a quoted JSON string (quotes, backslashes and control characters escaped), for file paths in JSON output.
+inline std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
 
 /// "a,b,c" split at its commas ("" gives one empty item).
 inline std::vector<std::string> split_commas(const std::string& text) {
