@@ -78,6 +78,7 @@ void write_model_card(const ModelCard& card, const std::string& path) {
        << "  \"seed\": " << card.seed << ",\n"
        << "  \"decision_threshold\": " << number_text(card.decision_threshold) << ",\n"
        << "  \"drop_below\": " << number_text(card.drop_below) << ",\n"
+       << "  \"keep_from\": " << number_text(card.keep_from) << ",\n"
        << "  \"metrics\": {";
   for (std::size_t i = 0; i < card.metrics.size(); ++i)
     file << (i ? ",\n    " : "\n    ") << json::quote(card.metrics[i].first) << ": " << number_text(card.metrics[i].second);
@@ -112,6 +113,7 @@ ModelCard read_model_card(const std::string& path) {
   card.seed = static_cast<unsigned long long>(number(root, "seed", path));
   card.decision_threshold = number(root, "decision_threshold", path);
   card.drop_below = number(root, "drop_below", path);
+  card.keep_from = root.find("keep_from") ? number(root, "keep_from", path) : card.decision_threshold;
   for (const auto& [name, value] : member(root, "metrics", json::Value::Kind::Object, path).object)
     if (value.kind == json::Value::Kind::Number) card.metrics.emplace_back(name, value.number);
   return card;

@@ -60,6 +60,7 @@ EvaluationReport evaluate_pair_model(const std::string& model, const PairDataset
   report.rows = rows.size();
   report.decision_threshold = classifier.operating_point().decision_threshold;
   report.drop_below = classifier.operating_point().drop_below;
+  report.keep_from = classifier.operating_point().keep_from;
   report.filter_confusion = confusion_matrix(filter_label.data(), probability.data(), rows.size(), report.decision_threshold);
   const std::size_t positives = report.filter_confusion.true_positive + report.filter_confusion.false_negative;
   if (positives > 0 && positives < rows.size()) {
@@ -75,6 +76,7 @@ EvaluationReport evaluate_pair_model(const std::string& model, const PairDataset
     report.dropped += decision[r] == PairDecision::Drop;
     report.checked += decision[r] == PairDecision::Check;
     report.kept += decision[r] == PairDecision::Keep;
+    report.removable_kept += decision[r] == PairDecision::Keep && filter_label[r] == 0;
     filter_removed += filter_label[r] == 0;
     removed += decision[r] == PairDecision::Drop || (decision[r] == PairDecision::Check && filter_label[r] == 0);
   }

@@ -71,6 +71,18 @@ double choose_drop_below(const PairDataset& dataset, const std::vector<double>& 
   return std::min(settings.drop_margin * lowest, settings.decision_threshold);
 }
 
+// keep_from: just above the highest probability of a selection-split pair the filters remove, so that no such pair
+// skips the filters there; never below the decision threshold.
+double choose_keep_from(const PairDataset& dataset, const std::vector<double>& probability,
+                        const TrainingSettings& settings) {
+  double highest_removed = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < dataset.row_count(); ++i)
+    if (dataset.split[i] == Split::Selection && dataset.filter_label[i] == 0)
+      highest_removed = std::max(highest_removed, probability[i]);
+  const double above = std::nextafter(highest_removed, std::numeric_limits<double>::infinity());
+  return std::isfinite(above) ? std::max(above, settings.decision_threshold) : settings.decision_threshold;
+}
+
 struct SplitScores {
   std::vector<int> filter_label, exact_label;
   std::vector<double> probability;
@@ -149,7 +161,8 @@ TrainingReport train_pair_network(const PairDataset& dataset, const TrainingSett
   best->network.save(network_path);
   // The runtime path: read back the file as the library will, so the card describes exactly what was saved.
   const std::vector<std::string> features = pair_feature_names(FeatureSettings{settings.feature_count});
-  const PairClassifier classifier(backend::read_network_weights(network_path), OperatingPoint{0.0, settings.decision_threshold},
+  const PairClassifier classifier(backend::read_network_weights(network_path),
+                                  OperatingPoint{0.0, settings.decision_threshold, settings.decision_threshold},
                                   features, network_path);
   PairFeatureBatch batch;
   batch.resize(dataset.row_count(), dataset.feature_count());
@@ -176,6 +189,7 @@ TrainingReport train_pair_network(const PairDataset& dataset, const TrainingSett
   card.seed = settings.seed;
   card.decision_threshold = settings.decision_threshold;
   card.drop_below = choose_drop_below(dataset, probability, settings);
+  card.keep_from = choose_keep_from(dataset, probability, settings);
 
   const SplitScores selection = scores_of(dataset, probability, Split::Selection);
   const SplitScores testing = scores_of(dataset, probability, Split::Testing);

@@ -57,8 +57,10 @@ PairClassifier::PairClassifier(NetworkWeights weights, const OperatingPoint& ope
 
 void PairClassifier::set_operating_point(const OperatingPoint& operating_point) {
   if (!(operating_point.drop_below >= 0.0 && operating_point.drop_below <= operating_point.decision_threshold &&
-        operating_point.decision_threshold <= 1.0))
-    throw std::invalid_argument("operating point: need 0 <= drop_below <= decision_threshold <= 1");
+        operating_point.decision_threshold <= 1.0 && operating_point.keep_from >= operating_point.decision_threshold &&
+        std::isfinite(operating_point.keep_from)))
+    throw std::invalid_argument(
+        "operating point: need 0 <= drop_below <= decision_threshold <= 1 and a finite keep_from >= decision_threshold");
   operating_point_ = operating_point;
 }
 
@@ -81,7 +83,12 @@ PairClassifier PairClassifier::load(const std::string& model, const FeatureSetti
   OperatingPoint point;
   point.drop_below = card.drop_below;
   point.decision_threshold = card.decision_threshold;
-  return PairClassifier(std::move(weights), point, features, files.network);
+  point.keep_from = card.keep_from;
+  try {
+    return PairClassifier(std::move(weights), point, features, files.network);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(files.card + ": " + e.what());
+  }
 }
 
 namespace {

@@ -34,6 +34,7 @@ TEST_CASE("training writes the model, card and neuron curve and learns the filte
   const ModelCard card = read_model_card(model.directory + "/card.json");
   CHECK(card.inputs == report.card.inputs);
   CHECK(card.drop_below == report.card.drop_below);
+  CHECK(card.keep_from == report.card.keep_from);
   CHECK(card.hidden_neurons == report.card.hidden_neurons);
 }
 

@@ -102,6 +102,49 @@ TEST_CASE("decisions follow the operating point and non-finite features are kept
   classifier.set_operating_point(OperatingPoint{0.0, 0.5});
   CHECK(classifier.decide(0.0) == PairDecision::Check);
   CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.6, 0.5}), std::invalid_argument);
+
+  // keep_from: between the decision threshold and keep_from the filters still check the pair; above 1 none is kept.
+  classifier.set_operating_point(OperatingPoint{0.1, 0.5, 0.9});
+  CHECK(classifier.decide(0.05) == PairDecision::Drop);
+  CHECK(classifier.decide(0.5) == PairDecision::Check);
+  CHECK(classifier.decide(0.8999) == PairDecision::Check);
+  CHECK(classifier.decide(0.9) == PairDecision::Keep);
+  CHECK(classifier.decide(std::nan("")) == PairDecision::Keep);
+  classifier.set_operating_point(OperatingPoint{0.1, 0.5, std::nextafter(1.0, 2.0)});
+  CHECK(classifier.decide(1.0) == PairDecision::Check);
+  CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.1, 0.5, 0.4}), std::invalid_argument);
+  CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.1, 0.5, std::nan("")}), std::invalid_argument);
+  CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.1, 0.5, HUGE_VAL}), std::invalid_argument);
+}
+
+TEST_CASE("keep_from keeps no selection-split pair the filters remove; older cards read it as the threshold",
+          "[learning][runtime]") {
+  const test::TrainedModel& model = test::trained_model();
+  const PairClassifier classifier = PairClassifier::load(model.directory);
+  const OperatingPoint point = classifier.operating_point();
+  CHECK(point.keep_from >= point.decision_threshold);
+  const PairFeatureBatch batch = batch_of(model.dataset, 0, model.dataset.row_count());
+  std::vector<PairDecision> decision(batch.rows);
+  classifier.decide(batch, decision.data());
+  std::size_t selection_kept = 0;
+  for (std::size_t i = 0; i < batch.rows; ++i) {
+    if (model.dataset.split[i] != Split::Selection) continue;
+    if (model.dataset.filter_label[i] == 0) CHECK(decision[i] != PairDecision::Keep);
+    selection_kept += decision[i] == PairDecision::Keep;
+  }
+  CHECK(selection_kept > 0);  // the network still lets pairs skip the filters
+
+  const std::string without = edited_model("no_keep_from", "card.json", [](const std::string& text) {
+    const std::size_t begin = text.find("  \"keep_from\": ");
+    return text.substr(0, begin) + text.substr(text.find('\n', begin) + 1);
+  });
+  const OperatingPoint old = PairClassifier::load(without).operating_point();
+  CHECK(old.keep_from == old.decision_threshold);
+  const std::string below = edited_model("low_keep_from", "card.json", [](const std::string& text) {
+    const std::size_t value = text.find("\"keep_from\": ") + std::string("\"keep_from\": ").size();
+    return text.substr(0, value) + "0.1" + text.substr(text.find(',', value));
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(below), Catch::Contains("card.json") && Catch::Contains("keep_from"));
 }
 
 TEST_CASE("the operating point drops no real collision of the selection split", "[learning][runtime]") {

@@ -40,6 +40,7 @@ void run_evaluate(const EvaluateOptions& options) {
             << "  real collisions " << r.real_collisions << ", dropped by the network " << r.real_collisions_dropped
             << " (below the decision threshold: " << r.real_collisions_below_threshold << ")\n"
             << "decisions: dropped " << r.dropped << ", checked by the filters " << r.checked << ", kept " << r.kept
+            << " (from " << r.keep_from << "; of them the filters would remove " << r.removable_kept << ")"
             << "\nremoval rate: network + checks " << r.network_removal_rate << ", combined filters "
             << r.filter_removal_rate << "\n"
             << "inference per row: clothcd " << r.ns_per_row << " ns, OpenNN batch " << r.opennn_batch_ns_per_row

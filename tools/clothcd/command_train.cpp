@@ -63,7 +63,8 @@ void run_train(const TrainOptions& options) {
             << "dropped constant columns: " << card.dropped_columns.size() << "\n"
             << "selection accuracy: " << report.selection_confusion.accuracy() << "\n"
             << "testing accuracy: " << report.testing_confusion.accuracy() << "  AUC: " << report.testing_auc << "\n"
-            << "operating point: drop below " << card.drop_below << ", check below " << card.decision_threshold << "\n"
+            << "operating point: drop below " << card.drop_below << ", keep from "
+            << card.keep_from << " (decision threshold " << card.decision_threshold << ")\n"
             << "wrote " << options.out << "/{network.xml,card.json,neurons.csv,neurons.png}\n";
 }
 

@@ -27,6 +27,9 @@ struct ModelCard {
   unsigned long long seed = 0;                ///< Seed of the training.
   double decision_threshold = 0.5;            ///< Probability >= threshold: the network says the filters keep the pair.
   double drop_below = 0.0;                    ///< Probability < drop_below: the pair is dropped without any check.
+  /// Probability >= keep_from: the pair skips the filters (OperatingPoint::keep_from). Cards without the field (written
+  /// before it existed) read as decision_threshold.
+  double keep_from = 0.5;
   std::vector<std::pair<std::string, double>> metrics;  ///< Named metrics (selection/testing accuracy, AUC, ...).
 };
 

@@ -24,6 +24,8 @@ struct EvaluationReport {
   std::size_t rows = 0;                          ///< Rows of the split.
   double decision_threshold = 0.5;               ///< From the model card.
   double drop_below = 0.0;                       ///< From the model card.
+  double keep_from = 0.5;                        ///< From the model card.
+  std::size_t removable_kept = 0;                ///< Rows with filter label 0 the network keeps (skip the filters).
   ConfusionMatrix filter_confusion;              ///< Against the filter label, positive = probability >= threshold.
   std::vector<RocPoint> roc;                     ///< Against the filter label (empty when a class is missing).
   double auc = 0.0;                              ///< Area under `roc` (0 when empty).

@@ -17,14 +17,18 @@ namespace clothcd::learning {
 /// What to do with a candidate pair.
 enum class PairDecision : unsigned char {
   Drop,   ///< The network is sure the pair cannot collide (probability < drop_below): skip it.
-  Check,  ///< The network thinks the filters would remove it, but not surely: run the exact filters.
-  Keep,   ///< The network expects the pair to survive the filters (or its output is not finite): exact CCD.
+  Check,  ///< The network is not sure the filters keep the pair: run the exact filters.
+  Keep,   ///< The network is sure the pair survives the filters (or its output is not finite): exact CCD.
 };
 
 /// Where to cut the network's probability that the pair survives the filters.
 struct OperatingPoint {
   double drop_below = 0.0;          ///< Drop when probability < drop_below (0 never drops).
-  double decision_threshold = 0.5;  ///< Check when drop_below <= probability < decision_threshold, else keep.
+  double decision_threshold = 0.5;  ///< The binary layer's threshold: probability >= it predicts "the filters keep it".
+  /// Check when drop_below <= probability < keep_from, else keep (skip the filters). At least decision_threshold;
+  /// above 1 nothing is kept. Training sets it above every selection-split pair the filters remove, so that skipping
+  /// the filters costs (almost) no removal.
+  double keep_from = 0.5;
 };
 
 /// Largest number of neurons per layer the batched forward pass supports.
@@ -54,7 +58,7 @@ class PairClassifier {
   /// Decision for one probability.
   [[nodiscard]] PairDecision decide(double probability) const {
     if (probability < operating_point_.drop_below) return PairDecision::Drop;
-    if (probability < operating_point_.decision_threshold) return PairDecision::Check;
+    if (probability < operating_point_.keep_from) return PairDecision::Check;
     return PairDecision::Keep;
   }
 
@@ -62,7 +66,8 @@ class PairClassifier {
   [[nodiscard]] const NetworkWeights& weights() const { return weights_; }
   /// The operating point.
   [[nodiscard]] const OperatingPoint& operating_point() const { return operating_point_; }
-  /// Sets the operating point (drop_below <= decision_threshold, both in [0, 1]; throws std::invalid_argument).
+  /// Sets the operating point (0 <= drop_below <= decision_threshold <= 1, decision_threshold <= keep_from, all
+  /// finite; throws std::invalid_argument).
   void set_operating_point(const OperatingPoint& operating_point);
 
  private:
