@@ -162,7 +162,7 @@ TrainingReport train_pair_network(const PairDataset& dataset, const TrainingSett
   // The runtime path: read back the file as the library will, so the card describes exactly what was saved.
   const std::vector<std::string> features = pair_feature_names(FeatureSettings{settings.feature_count});
   const PairClassifier classifier(backend::read_network_weights(network_path),
-                                  OperatingPoint{0.0, settings.decision_threshold, settings.decision_threshold},
+                                  OperatingPoint{0.0, settings.decision_threshold},
                                   features, network_path);
   PairFeatureBatch batch;
   batch.resize(dataset.row_count(), dataset.feature_count());

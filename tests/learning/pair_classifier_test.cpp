@@ -115,6 +115,7 @@ TEST_CASE("decisions follow the operating point and non-finite features are kept
   CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.1, 0.5, 0.4}), std::invalid_argument);
   CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.1, 0.5, std::nan("")}), std::invalid_argument);
   CHECK_THROWS_AS(classifier.set_operating_point(OperatingPoint{0.1, 0.5, HUGE_VAL}), std::invalid_argument);
+  CHECK(OperatingPoint{0.1, 0.7}.keep_from == 0.7);  // left out: the decision threshold
 }
 
 TEST_CASE("keep_from keeps no selection-split pair the filters remove; older cards read it as the threshold",

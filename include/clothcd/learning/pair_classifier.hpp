@@ -27,8 +27,8 @@ struct OperatingPoint {
   double decision_threshold = 0.5;  ///< The binary layer's threshold: probability >= it predicts "the filters keep it".
   /// Check when drop_below <= probability < keep_from, else keep (skip the filters). At least decision_threshold;
   /// above 1 nothing is kept. Training sets it above every selection-split pair the filters remove, so that skipping
-  /// the filters costs (almost) no removal.
-  double keep_from = 0.5;
+  /// the filters costs (almost) no removal. Left out of an initializer, it equals decision_threshold.
+  double keep_from = decision_threshold;
 };
 
 /// Largest number of neurons per layer the batched forward pass supports.
