@@ -92,13 +92,15 @@ std::array<MethodResult, kMethodCount> measure(const learning::GeneratedDataset&
   const learning::FeatureSettings features{card.feature_count};
   const learning::PairClassifier classifier = learning::PairClassifier::load(model_dir, features);
   learning::PairFeatureBatch batch;
-  std::vector<learning::PairDecision> decisions(queries.size());
+  std::vector<double> probability(queries.size());
   results[3].ns_per_pair = 1e6 * median_ms(runs, [&] {
                              learning::compute_pair_features(queries.data(), queries.size(), features, batch);
-                             classifier.decide(batch, decisions.data());
+                             classifier.probabilities(batch, probability.data());
                            }) / n;
-  keep.assign(queries.size(), 1);
-  for (std::size_t i = 0; i < queries.size(); ++i) keep[i] = decisions[i] == learning::PairDecision::Keep;
+  // The network alone, as in the paper: it removes every pair it predicts the filters remove (probability below the
+  // binary layer's decision threshold), unchecked.
+  const double threshold = classifier.operating_point().decision_threshold;
+  for (std::size_t i = 0; i < queries.size(); ++i) keep[i] = probability[i] < threshold ? 0 : 1;
   count_removed(keep, exact, results[3]);
 
   NetworkCuller culler(model_dir);
