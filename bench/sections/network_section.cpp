@@ -143,7 +143,9 @@ SectionReport run_network(const BenchContext& context) {
   if (eval.real_collisions == 0)
     md += "\nThe split holds no real collision, so this safety count proves nothing here.\n";
   md += "\nDecisions: " + std::to_string(eval.dropped) + " dropped, " + std::to_string(eval.checked) +
-        " checked by the filters, " + std::to_string(eval.kept) + " kept; removal rate " +
+        " checked by the filters, " + std::to_string(eval.kept) + " kept (probability from " +
+        number(eval.keep_from, 4) + "; " + std::to_string(eval.removable_kept) +
+        " of them pairs the filters remove); the network culler's removal rate " +
         fixed(100 * eval.network_removal_rate, 2) + "% (combined filters " + fixed(100 * eval.filter_removal_rate, 2) +
         "%).\n";
   if (settings.time_inference)

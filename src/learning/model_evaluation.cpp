@@ -78,7 +78,7 @@ EvaluationReport evaluate_pair_model(const std::string& model, const PairDataset
     report.kept += decision[r] == PairDecision::Keep;
     report.removable_kept += decision[r] == PairDecision::Keep && filter_label[r] == 0;
     filter_removed += filter_label[r] == 0;
-    removed += decision[r] == PairDecision::Drop || (decision[r] == PairDecision::Check && filter_label[r] == 0);
+    removed += decision[r] != PairDecision::Keep && filter_label[r] == 0;
   }
   report.filter_removal_rate = static_cast<double>(filter_removed) / static_cast<double>(rows.size());
   report.network_removal_rate = static_cast<double>(removed) / static_cast<double>(rows.size());

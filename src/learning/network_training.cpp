@@ -42,6 +42,9 @@ void check_dataset(const PairDataset& dataset, const TrainingSettings& settings)
   if (settings.trials < 1) throw std::invalid_argument("trials must be at least 1");
   if (!(settings.decision_threshold >= 0.0 && settings.decision_threshold <= 1.0))
     throw std::invalid_argument("the decision threshold must be in [0, 1]");
+  if (!(settings.drop_margin >= 0.0 && settings.drop_margin <= 1.0 && settings.keep_margin >= 0.0 &&
+        settings.keep_margin <= 1.0))
+    throw std::invalid_argument("the drop and keep margins must be in [0, 1]");
   const ClassBalance balance = class_balance(dataset);
   const auto training = static_cast<std::size_t>(Split::Training), selection = static_cast<std::size_t>(Split::Selection);
   if (balance.rows[selection] == 0) throw std::invalid_argument("the data set has no selection rows");
@@ -71,16 +74,18 @@ double choose_drop_below(const PairDataset& dataset, const std::vector<double>& 
   return std::min(settings.drop_margin * lowest, settings.decision_threshold);
 }
 
-// keep_from: just above the highest probability of a selection-split pair the filters remove, so that no such pair
-// skips the filters there; never below the decision threshold.
+// keep_from: above the highest probability of a selection-split pair the filters remove, by keep_margin of its distance
+// to 1 (the mirror of drop_below's margin), so that no such pair skips the filters there and few do on new data; never
+// below the decision threshold; above 1 (nothing kept) when such a pair has probability 1.
 double choose_keep_from(const PairDataset& dataset, const std::vector<double>& probability,
                         const TrainingSettings& settings) {
   double highest_removed = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < dataset.row_count(); ++i)
     if (dataset.split[i] == Split::Selection && dataset.filter_label[i] == 0)
       highest_removed = std::max(highest_removed, probability[i]);
-  const double above = std::nextafter(highest_removed, std::numeric_limits<double>::infinity());
-  return std::isfinite(above) ? std::max(above, settings.decision_threshold) : settings.decision_threshold;
+  if (!std::isfinite(highest_removed)) return settings.decision_threshold;
+  const double above = std::nextafter(1.0 - settings.keep_margin * (1.0 - highest_removed), 2.0);
+  return std::max(above, settings.decision_threshold);
 }
 
 struct SplitScores {

@@ -78,4 +78,11 @@ TEST_CASE("training refuses data sets it cannot learn from", "[learning][trainin
     bad_threshold.decision_threshold = threshold;
     CHECK_THROWS_WITH(train_pair_network(dataset, bad_threshold, out, "x"), Catch::Contains("decision threshold"));
   }
+  for (const double margin : {std::nan(""), -0.1, 1.5}) {
+    TrainingSettings bad_keep = test::small_training_settings(), bad_drop = bad_keep;
+    bad_keep.keep_margin = margin;
+    bad_drop.drop_margin = margin;
+    CHECK_THROWS_WITH(train_pair_network(dataset, bad_keep, out, "x"), Catch::Contains("margins"));
+    CHECK_THROWS_WITH(train_pair_network(dataset, bad_drop, out, "x"), Catch::Contains("margins"));
+  }
 }

@@ -96,7 +96,7 @@ TEST_CASE("decisions follow the operating point and non-finite features are kept
   classifier.decide(batch, decision.data());
   for (std::size_t i = 0; i < 100; ++i) CHECK(decision[i] == classifier.decide(probability[i]));
   CHECK(decision[7] == PairDecision::Keep);
-  CHECK(classifier.decide(point.decision_threshold) == PairDecision::Keep);
+  CHECK(classifier.decide(point.keep_from) == PairDecision::Keep);
   CHECK(classifier.decide(-1.0) == (point.drop_below > -1.0 ? PairDecision::Drop : PairDecision::Check));
 
   classifier.set_operating_point(OperatingPoint{0.0, 0.5});
@@ -134,6 +134,14 @@ TEST_CASE("keep_from keeps no selection-split pair the filters remove; older car
     selection_kept += decision[i] == PairDecision::Keep;
   }
   CHECK(selection_kept > 0);  // the network still lets pairs skip the filters
+  // Training's rule: half way from the highest such probability to 1 (TrainingSettings::keep_margin), just above.
+  std::vector<double> probability(batch.rows);
+  classifier.probabilities(batch, probability.data());
+  double highest = 0.0;
+  for (std::size_t i = 0; i < batch.rows; ++i)
+    if (model.dataset.split[i] == Split::Selection && model.dataset.filter_label[i] == 0)
+      highest = std::max(highest, probability[i]);
+  CHECK(point.keep_from == std::max(point.decision_threshold, std::nextafter(1.0 - 0.5 * (1.0 - highest), 2.0)));
 
   const std::string without = edited_model("no_keep_from", "card.json", [](const std::string& text) {
     const std::size_t begin = text.find("  \"keep_from\": ");

@@ -37,11 +37,12 @@ void run_evaluate(const EvaluateOptions& options) {
             << "  accuracy " << c.accuracy() << "  error rate " << c.error_rate() << "  sensitivity "
             << c.sensitivity() << "  specificity " << c.specificity() << "  AUC " << r.auc << "\n"
             << "against the exact label (drop below " << r.drop_below << "):\n"
-            << "  real collisions " << r.real_collisions << ", dropped by the network " << r.real_collisions_dropped
-            << " (below the decision threshold: " << r.real_collisions_below_threshold << ")\n"
+            << "  real collisions " << r.real_collisions << ", dropped by the network alone " << r.real_collisions_dropped
+            << " (below the decision threshold: " << r.real_collisions_below_threshold
+            << "; the detector's filters check every drop)\n"
             << "decisions: dropped " << r.dropped << ", checked by the filters " << r.checked << ", kept " << r.kept
             << " (from " << r.keep_from << "; of them the filters would remove " << r.removable_kept << ")"
-            << "\nremoval rate: network + checks " << r.network_removal_rate << ", combined filters "
+            << "\nremoval rate: network culler (network, filters on every pair not kept) " << r.network_removal_rate << ", combined filters "
             << r.filter_removal_rate << "\n"
             << "inference per row: clothcd " << r.ns_per_row << " ns, OpenNN batch " << r.opennn_batch_ns_per_row
             << " ns, OpenNN one row " << r.opennn_single_ns_per_row << " ns; max |clothcd - OpenNN| "

@@ -30,11 +30,13 @@ struct EvaluationReport {
   std::vector<RocPoint> roc;                     ///< Against the filter label (empty when a class is missing).
   double auc = 0.0;                              ///< Area under `roc` (0 when empty).
   std::size_t real_collisions = 0;               ///< Rows with exact label 1.
-  std::size_t real_collisions_dropped = 0;       ///< ... of which the network drops (probability < drop_below).
+  std::size_t real_collisions_dropped = 0;       ///< ... of which the network alone drops (probability < drop_below).
   std::size_t real_collisions_below_threshold = 0;  ///< ... below the decision threshold (dropped if no check ran).
   std::size_t dropped = 0, checked = 0, kept = 0;   ///< Decisions (see PairDecision).
   double filter_removal_rate = 0.0;   ///< Fraction with filter label 0 (what the combined filters remove).
-  double network_removal_rate = 0.0;  ///< Fraction removed by network + filters on the checked pairs.
+  /// Fraction the detector's culler removes: pairs the network does not keep and the filters remove (the filters
+  /// check every pair the network drops, as NetworkCuller does).
+  double network_removal_rate = 0.0;
   double max_difference_vs_opennn = 0.0;  ///< Largest |clothcd - OpenNN| probability over the rows.
   double ns_per_row = 0.0;                ///< clothcd's batched forward pass (features given).
   double opennn_batch_ns_per_row = 0.0;   ///< OpenNN calculate_outputs on all rows at once.

@@ -24,6 +24,8 @@ struct TrainingSettings {
   std::size_t max_epochs = 1000;     ///< Quasi-Newton iteration limit per training.
   double decision_threshold = 0.5;   ///< Threshold of the binary probabilistic layer.
   double drop_margin = 0.5;          ///< drop_below = drop_margin x the lowest probability of a real collision (selection).
+  /// keep_from = 1 - keep_margin x (1 - the highest probability of a pair the filters remove) (selection), just above.
+  double keep_margin = 0.5;
   std::size_t feature_count = 15;    ///< FeatureSettings::count the data set was made with (checked against its header).
 };
 
