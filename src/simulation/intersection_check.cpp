@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "clothcd/simulation/intersection_check.hpp"
 
@@ -23,6 +24,18 @@ struct Entry {
 std::vector<Entry> gather(const Faces& cloth_faces, const Vertices& cloth_positions,
                           const std::vector<TriangleMesh>& obstacles) {
   if (!cloth_positions.allFinite()) throw std::invalid_argument("frame check: cloth positions are not finite");
+  const auto check_indices = [](const Faces& faces, Eigen::Index vertices, const std::string& what) {
+    if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= vertices))
+      throw std::invalid_argument("frame check: " + what + " has a face index outside 0.." +
+                                  std::to_string(vertices - 1));
+  };
+  check_indices(cloth_faces, cloth_positions.rows(), "the cloth");
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    const std::string name = "obstacle " + std::to_string(k + 1);
+    if (!obstacles[k].vertices.allFinite())
+      throw std::invalid_argument("frame check: " + name + " has a NaN or infinite coordinate");
+    check_indices(obstacles[k].faces, obstacles[k].vertices.rows(), name);
+  }
   std::vector<Entry> entries;
   auto add = [&entries](int body, int face, const Eigen::Vector3i& v, const Vertices& x) {
     Entry e;
@@ -111,10 +124,14 @@ IntersectionReport check_frame(const Faces& cloth_faces, const Vertices& cloth_p
   if (!(cell > 0)) cell = 1.0;
   const double half_margin = 0.5 * std::max(0.0, settings.distance_margin);
 
-  // Cell ranges of the boxes grown by half the margin, so that every pair within the margin shares a cell.
+  // Cell ranges of the boxes grown by half the margin, so that every pair within the margin shares a cell. Every pair
+  // examined has a cloth triangle, so obstacle ranges are clipped to the cloth's: a large obstacle (or a tiny cloth)
+  // would otherwise fill millions of cells.
   Eigen::Vector3d origin = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  for (const Entry& e : entries) origin = origin.cwiseMin(e.min);
+  for (const Entry& e : entries)
+    if (e.body == 0) origin = origin.cwiseMin(e.min);
   std::vector<Eigen::Vector3i> lo(entries.size()), hi(entries.size());
+  Eigen::Vector3i cloth_lo = Eigen::Vector3i::Constant(kCellRange), cloth_hi = Eigen::Vector3i::Constant(-kCellRange);
   std::vector<CellEntry> cells;
   for (size_t i = 0; i < entries.size(); ++i) {
     const Eigen::Vector3d a = ((entries[i].min - origin).array() - half_margin) / cell;
@@ -122,6 +139,13 @@ IntersectionReport check_frame(const Faces& cloth_faces, const Vertices& cloth_p
     for (int k = 0; k < 3; ++k) {
       lo[i][k] = static_cast<int>(std::clamp(std::floor(a[k]), double(-kCellRange + 1), double(kCellRange - 1)));
       hi[i][k] = static_cast<int>(std::clamp(std::floor(b[k]), double(-kCellRange + 1), double(kCellRange - 1)));
+    }
+    if (entries[i].body == 0) {  // the cloth's entries come first
+      cloth_lo = cloth_lo.cwiseMin(lo[i]);
+      cloth_hi = cloth_hi.cwiseMax(hi[i]);
+    } else {
+      lo[i] = lo[i].cwiseMax(cloth_lo);
+      hi[i] = hi[i].cwiseMin(cloth_hi);
     }
     for (int x = lo[i].x(); x <= hi[i].x(); ++x) {
       for (int y = lo[i].y(); y <= hi[i].y(); ++y) {

@@ -76,3 +76,29 @@ TEST_CASE("the grid check equals the brute force on random crumpled cloths", "[s
   }
   CHECK(total > 0);  // the inputs do exercise intersections
 }
+
+TEST_CASE("a tiny cloth across a huge obstacle is checked in the cloth's cells only", "[simulation][intersection]") {
+  // A 1 cm cloth through a 10 m box: the grid's cells are 5 mm, so the box alone would cover about 10^10 of them.
+  TriangleMesh cloth = make_grid(5, 5, 0.01, 0.01);
+  cloth.vertices.col(1).array() += 10.0;  // the cloth at the top face of the box (half extents 10)
+  cloth.vertices(12, 1) -= 0.004;        // its middle vertex pokes through it
+  const TriangleMesh box = make_box(V(10, 10, 10));
+  const IntersectionReport grid = check_frame(cloth.faces, cloth.vertices, {box});
+  const IntersectionReport brute = check_frame_brute_force(cloth.faces, cloth.vertices, {box});
+  CHECK(grid.cloth_obstacle_pairs == brute.cloth_obstacle_pairs);
+  CHECK(grid.cloth_obstacle_pairs > 0);
+  CHECK(grid.min_cloth_obstacle_distance == brute.min_cloth_obstacle_distance);
+}
+
+TEST_CASE("the frame check refuses bad obstacles and indices", "[simulation][intersection][bad-input]") {
+  const TriangleMesh cloth = make_grid(4, 4, 1.0, 1.0);
+  TriangleMesh box = make_box();
+  box.vertices(2, 0) = std::nan("");
+  CHECK_THROWS_WITH(check_frame(cloth.faces, cloth.vertices, {box}), Catch::Contains("obstacle 1") && Catch::Contains("NaN"));
+  box = make_box();
+  box.faces(3, 1) = 8;
+  CHECK_THROWS_WITH(check_frame(cloth.faces, cloth.vertices, {box}), Catch::Contains("obstacle 1") && Catch::Contains("0..7"));
+  Faces faces = cloth.faces;
+  faces(0, 0) = -1;
+  CHECK_THROWS_WITH(check_frame(faces, cloth.vertices, {}), Catch::Contains("the cloth"));
+}
