@@ -212,7 +212,7 @@ TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadRep
   check_readable_file(path);
   check_ply_header(path);
   detail::check_off_body(path);
-  detail::check_ascii_ply_body(path);
+  detail::check_ply_body(path);
   LoadReport local_report;
   const std::lock_guard<std::mutex> lock(import_mutex());
   const ScopedErrorLog log;

@@ -1,10 +1,11 @@
-// Checks of OFF and ASCII PLY bodies (see text_mesh_check.hpp).
+// Checks of OFF and PLY bodies (see text_mesh_check.hpp).
 #include "mesh/text_mesh_check.hpp"
 
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,16 @@ long long whole_number(const std::string& token) {
   const long long value = std::strtoll(token.c_str(), &end, 10);
   if (errno != 0 || end != token.c_str() + token.size() || value < 0 || value > (1LL << 62)) return -1;
   return value;
+}
+
+// Bytes of a PLY scalar type, 0 for an unknown name.
+int ply_type_bytes(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
 }
 
 }  // namespace
@@ -71,11 +82,14 @@ void check_off_body(const std::filesystem::path& path) {
   }
 }
 
-void check_ascii_ply_body(const std::filesystem::path& path) {
-  std::ifstream in(path);
+void check_ply_body(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
   std::string line;
   if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;
-  long long declared = 0;
+  const std::string file = path.string();
+  long long declared = 0;        // elements of all kinds
+  double least_bytes = 0.0;      // binary: the smallest body the header allows (each list at least its count)
+  long long element_count = 0;   // of the element whose properties are being read
   bool ascii = false;
   while (std::getline(in, line)) {
     std::istringstream words(line);
@@ -86,21 +100,40 @@ void check_ascii_ply_body(const std::filesystem::path& path) {
       ascii = name == "ascii";
     } else if (keyword == "element") {
       words >> name >> count;
-      const long long n = whole_number(count);
-      if (n < 0) throw MeshError(path.string(), "PLY element '" + name + "' has count '" + count + "', not a whole number");
-      declared += n;
+      element_count = whole_number(count);
+      if (element_count < 0)
+        throw MeshError(file, "PLY element '" + name + "' has count '" + count + "', not a whole number");
+      declared += element_count;
+    } else if (keyword == "property") {
+      std::string type;
+      words >> type;
+      if (type == "list") words >> type;  // the list's count type: what every list holds at least
+      const int bytes = ply_type_bytes(type);
+      if (bytes == 0) throw MeshError(file, "PLY property type '" + type + "' is unknown");
+      least_bytes += static_cast<double>(element_count) * bytes;
     } else if (keyword == "end_header") {
       break;
     }
   }
-  if (!ascii) return;
-  long long lines = 0;
-  while (lines < declared && std::getline(in, line)) {
-    if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+  if (ascii) {
+    long long lines = 0;
+    while (lines < declared && std::getline(in, line)) {
+      if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+    }
+    if (lines < declared)
+      throw MeshError(file, "PLY body holds " + std::to_string(lines) + " element lines, its header declares " +
+                                std::to_string(declared) + " (truncated file or wrong count)");
+    return;
   }
-  if (lines < declared)
-    throw MeshError(path.string(), "PLY body holds " + std::to_string(lines) + " element lines, its header declares " +
-                                       std::to_string(declared) + " (truncated file or wrong count)");
+  const std::streamoff body_start = in.tellg();
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  if (error || body_start < 0) return;  // assimp reports what it cannot read
+  const double body = static_cast<double>(size) - static_cast<double>(body_start);
+  if (body < least_bytes)
+    throw MeshError(file, "binary PLY body holds " + std::to_string(static_cast<long long>(body)) +
+                              " bytes, its header declares at least " + std::to_string(least_bytes) +
+                              " (truncated file or wrong count)");
 }
 
 }  // namespace clothcd::detail

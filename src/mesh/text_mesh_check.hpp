@@ -1,7 +1,8 @@
 #pragma once
 // Checks of the text mesh formats whose assimp readers repair faults silently: the OFF reader turns a negative or
-// too-large vertex index into a valid one and keeps faces of fewer than three vertices, and the ASCII PLY reader pads a
-// body shorter than its header declares with zero vertices. Run before assimp reads the file. Internal.
+// too-large vertex index into a valid one and keeps faces of fewer than three vertices, the ASCII PLY reader pads a
+// body shorter than its header declares with zero vertices, and the binary one allocates whatever count is declared.
+// Run before assimp reads the file. Internal.
 
 #include <filesystem>
 
@@ -12,8 +13,10 @@ namespace clothcd::detail {
 /// is not a whole number in 0 .. vertices - 1. Other files pass.
 void check_off_body(const std::filesystem::path& path);
 
-/// For an ASCII PLY file: throws MeshError when the body holds fewer lines than the elements its header declares
-/// (one line per element). Other files pass.
-void check_ascii_ply_body(const std::filesystem::path& path);
+/// For a PLY file: throws MeshError when an element count is not a whole number, a property type is unknown, an ASCII
+/// body holds fewer lines than the elements its header declares (one line per element), or a binary body is shorter
+/// than the header allows (assimp's binary reader allocates the declared count first: 2e9 vertices in a 300-byte file
+/// took gigabytes). Other files pass.
+void check_ply_body(const std::filesystem::path& path);
 
 }  // namespace clothcd::detail

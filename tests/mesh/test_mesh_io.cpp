@@ -188,6 +188,22 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
     require_load_error(write_file(dir / "huge.ply", ply_header(4000000000, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
                        "truncated");
   }
+  SECTION("a binary PLY body shorter than its header (a huge count would be allocated first)") {
+    const auto binary = [](long long vertices) {
+      std::string text = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertices) +
+                         "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+                         "property list uchar int vertex_indices\nend_header\n";
+      const float corners[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+      const int face[3] = {0, 1, 2};
+      text.append(reinterpret_cast<const char*>(corners), sizeof corners);
+      text.push_back(3);
+      text.append(reinterpret_cast<const char*>(face), sizeof face);
+      return text;
+    };
+    CHECK(load_mesh(write_file(dir / "ok.ply", binary(3))).face_count() == 1);
+    require_load_error(write_file(dir / "huge_binary.ply", binary(2000000000)), "truncated");
+    require_load_error(write_file(dir / "long_binary.ply", binary(4)), "truncated");
+  }
   SECTION("no faces") { require_load_error(write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\n"), ""); }
   SECTION("only degenerate faces") {
     require_load_error(write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate");
