@@ -37,8 +37,10 @@ MeshInfo compute_mesh_info(const TriangleMesh& mesh) {
   MeshInfo info;
   info.vertices = mesh.vertex_count();
   info.faces = mesh.face_count();
-  info.bbox_min = mesh.vertices.colwise().minCoeff().transpose();
-  info.bbox_max = mesh.vertices.colwise().maxCoeff().transpose();
+  if (mesh.vertex_count() > 0) {
+    info.bbox_min = mesh.vertices.colwise().minCoeff().transpose();
+    info.bbox_max = mesh.vertices.colwise().maxCoeff().transpose();
+  }
 
   UnionFind components(static_cast<std::size_t>(mesh.vertex_count()));
   std::unordered_map<std::uint64_t, EdgeUse> edges;

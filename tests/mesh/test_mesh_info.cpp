@@ -32,3 +32,12 @@ TEST_CASE("a flipped face breaks watertightness, a third face on an edge is non-
   CHECK(info.non_manifold_edges == 1);
   CHECK_FALSE(info.watertight);
 }
+
+TEST_CASE("an empty mesh has counts of 0 and an empty box", "[mesh][info]") {
+  const clothcd::MeshInfo info = clothcd::compute_mesh_info(clothcd::TriangleMesh{});
+  CHECK(info.vertices == 0);
+  CHECK(info.faces == 0);
+  CHECK(info.components == 0);
+  CHECK_FALSE(info.watertight);
+  CHECK((info.bbox_min.array() > info.bbox_max.array()).all());
+}

@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 
+#include <limits>
+
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd {
@@ -12,8 +14,10 @@ namespace clothcd {
 struct MeshInfo {
   Eigen::Index vertices = 0;        ///< Vertex count.
   Eigen::Index faces = 0;           ///< Face count.
-  Eigen::Vector3d bbox_min;         ///< Smallest coordinates over all vertices.
-  Eigen::Vector3d bbox_max;         ///< Largest coordinates over all vertices.
+  /// Smallest coordinates over all vertices (+infinity without vertices).
+  Eigen::Vector3d bbox_min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  /// Largest coordinates over all vertices (-infinity without vertices).
+  Eigen::Vector3d bbox_max = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
   int components = 0;               ///< Connected components of faces (faces sharing a vertex are connected).
   bool watertight = false;          ///< Every edge is used by exactly two faces, in opposite directions.
   int boundary_edges = 0;           ///< Edges used by one face.
@@ -22,7 +26,7 @@ struct MeshInfo {
   double surface_area = 0.0;        ///< Sum of triangle areas.
 };
 
-/// Computes MeshInfo for a mesh with valid indices (see validate_mesh).
+/// Computes MeshInfo for a mesh with valid indices (see validate_mesh); an empty mesh gives counts of 0.
 [[nodiscard]] MeshInfo compute_mesh_info(const TriangleMesh& mesh);
 
 }  // namespace clothcd
