@@ -40,7 +40,11 @@ struct FileCloser {
 ConvexHull compute_convex_hull(const Vertices& points) {
   if (!points.allFinite()) throw std::invalid_argument("compute_convex_hull: non-finite coordinate");
   if (points.rows() < 4) return degenerate_hull(points);
-  std::vector<coordT> coords(points.data(), points.data() + points.size());
+  // Qhull squares coordinates: scaled by a power of two (exact) so that the largest magnitude is about 1, since from
+  // about 1e155 its products overflow (wrong hulls, then a crash inside it from about 1e170).
+  const double largest = points.cwiseAbs().maxCoeff();
+  const Vertices scaled = largest > 0.0 ? Vertices(points * std::ldexp(1.0, -std::ilogb(largest))) : points;
+  std::vector<coordT> coords(scaled.data(), scaled.data() + scaled.size());
   std::unique_ptr<FILE, FileCloser> quiet(std::fopen("/dev/null", "w"));
   qhT qh_storage;
   qhT* qh = &qh_storage;
@@ -63,8 +67,8 @@ ConvexHull compute_convex_hull(const Vertices& points) {
         ++k;
       }
       if (k != 3) continue;
-      const Eigen::Vector3d a = points.row(t[0]).transpose(), b = points.row(t[1]).transpose(),
-                            c = points.row(t[2]).transpose();
+      const Eigen::Vector3d a = scaled.row(t[0]).transpose(), b = scaled.row(t[1]).transpose(),
+                            c = scaled.row(t[2]).transpose();
       const Eigen::Vector3d outward(facet->normal[0], facet->normal[1], facet->normal[2]);
       if ((b - a).cross(c - a).dot(outward) < 0) std::swap(t[1], t[2]);
       triangles.push_back(t);

@@ -415,6 +415,18 @@ void grow_obb(Obb& box, const Vertices& points) {
 
 Obb compute_obb(const TriangleMesh& mesh, ObbMethod method, const ObbSettings& settings) {
   check_input(mesh, "compute_obb");
+  // Scaled by a power of two (exact) so that the largest coordinate magnitude is in [1, 2): the methods multiply
+  // coordinates (covariances, areas, volumes), which overflow from about 1e100 and underflow below about 1e-100.
+  const double largest = mesh.vertices.cwiseAbs().maxCoeff();
+  const int exponent = largest > 0.0 ? std::ilogb(largest) : 0;
+  if (exponent < -60 || exponent > 60) {
+    TriangleMesh scaled = mesh;
+    scaled.vertices *= std::ldexp(1.0, -exponent);
+    Obb box = compute_obb(scaled, method, settings);
+    box.center *= std::ldexp(1.0, exponent);
+    box.half_extents *= std::ldexp(1.0, exponent);
+    return box;
+  }
   ObbScratch scratch;
   switch (method) {
     case ObbMethod::Covariance:
@@ -443,6 +455,7 @@ SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& se
   } else {
     simplified_.vertices = original.vertices;
   }
+  original_vertex_count_ = original.vertex_count();
   hull_indices_ = compute_convex_hull(original.vertices).vertex_indices;
   Vertices hull_points(static_cast<Eigen::Index>(hull_indices_.size()), 3);
   for (size_t i = 0; i < hull_indices_.size(); ++i)
@@ -471,6 +484,7 @@ SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& se
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
+  if (!pose.matrix().allFinite()) throw std::invalid_argument("SimplifiedObb::update: non-finite pose");
   move_rows(simplified_.vertices, pose, moved_.vertices);
   const AdaptiveHints hints{pose * rest_centre_, pose.linear(), &face_begin_, &face_list_, &face_moments_};
   Obb box;
@@ -491,7 +505,11 @@ Obb SimplifiedObb::update(const Eigen::Isometry3d& pose) {
 }
 
 Obb SimplifiedObb::update(const Eigen::Isometry3d& pose, const Vertices& original_vertices) {
-  if (!original_vertices.allFinite()) throw std::invalid_argument("SimplifiedObb::update: non-finite coordinate");
+  if (!original_vertices.allFinite() || !pose.matrix().allFinite())
+    throw std::invalid_argument("SimplifiedObb::update: non-finite coordinate or pose");
+  if (original_vertices.rows() != original_vertex_count_)
+    throw std::invalid_argument("SimplifiedObb::update: " + std::to_string(original_vertices.rows()) +
+                                " vertices for a model of " + std::to_string(original_vertex_count_));
   move_rows(simplified_.vertices, pose, moved_.vertices);
   return fit_obb_to_axes(original_vertices, adaptive_axes(moved_.vertices, moved_.faces, settings_, scratch_));
 }

@@ -214,3 +214,33 @@ TEST_CASE("Minimum-area rectangle matches brute force over hull edges", "[geomet
     CHECK(r.area == Approx(brute).epsilon(1e-9));
   }
 }
+
+TEST_CASE("Every OBB method gives the same box at any scale", "[geometry][obb]") {
+  const TriangleMesh unit = make_uv_sphere(1.0, 8, 4);
+  for (const ObbMethod method : {ObbMethod::Covariance, ObbMethod::FastAdaptive, ObbMethod::FastAdaptiveSimplified,
+                                 ObbMethod::Tight}) {
+    const Obb reference = compute_obb(unit, method);
+    Eigen::Vector3d expected = reference.half_extents;
+    std::sort(expected.data(), expected.data() + 3);
+    for (const int exponent : {-900, -300, 300, 900}) {  // coordinates of about 1e-271 .. 1e271
+      INFO("method " << static_cast<int>(method) << ", scale 2^" << exponent);
+      TriangleMesh scaled = unit;
+      scaled.vertices *= std::ldexp(1.0, exponent);
+      const Obb box = compute_obb(scaled, method);
+      Eigen::Vector3d half = box.half_extents * std::ldexp(1.0, -exponent);
+      std::sort(half.data(), half.data() + 3);
+      CHECK((half - expected).cwiseAbs().maxCoeff() <= 1e-12);
+      CHECK((box.center * std::ldexp(1.0, -exponent)).cwiseAbs().maxCoeff() <= 1e-12);
+    }
+  }
+}
+
+TEST_CASE("SimplifiedObb::update refuses a NaN pose and a wrong vertex count", "[geometry][obb][simplified]") {
+  const TriangleMesh sphere = make_uv_sphere(1.0, 8, 4);
+  SimplifiedObb box(sphere);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation().x() = std::nan("");
+  CHECK_THROWS_AS(box.update(pose), std::invalid_argument);
+  CHECK_THROWS_AS(box.update(Eigen::Isometry3d::Identity(), sphere.vertices.topRows(3)), std::invalid_argument);
+  CHECK_NOTHROW(box.update(Eigen::Isometry3d::Identity(), sphere.vertices));
+}

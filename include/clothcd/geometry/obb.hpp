@@ -70,11 +70,13 @@ class SimplifiedObb {
   /// Throws std::invalid_argument for an empty mesh or non-finite coordinates.
   explicit SimplifiedObb(const TriangleMesh& original, const ObbSettings& settings = {});
 
-  /// The box of the model moved by `pose` (rest pose = identity). Allocates nothing after the first call.
+  /// The box of the model moved by `pose` (rest pose = identity). Allocates nothing after the first call. Throws
+  /// std::invalid_argument for a non-finite pose.
   [[nodiscard]] Obb update(const Eigen::Isometry3d& pose);
 
   /// The box for a model whose vertices are now `original_vertices` (same #V as the original, any deformation): the
   /// axes come from the simplified model at rest moved by `pose`, the extents from every row of `original_vertices`.
+  /// Throws std::invalid_argument for another vertex count or a non-finite coordinate or pose.
   [[nodiscard]] Obb update(const Eigen::Isometry3d& pose, const Vertices& original_vertices);
 
   /// The simplified model at rest.
@@ -84,6 +86,7 @@ class SimplifiedObb {
 
  private:
   TriangleMesh simplified_;
+  Eigen::Index original_vertex_count_ = 0;
   std::vector<int> hull_indices_;
   SupportPoints hull_support_;  // original hull vertices at rest
   Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();  // eqs. 11-14 on the simplified model at rest
