@@ -286,10 +286,19 @@ bool all_finite(const CcdQuery& query) {
   return true;
 }
 
-// Approximate contact parameters and unit normal at time t (from the second primitive towards the first).
+// Approximate contact parameters and unit normal at time t (from the second primitive towards the first), computed on
+// the positions scaled by a power of two to magnitudes about 1 (both are scale-invariant; products of huge coordinates
+// overflowed into NaN parameters from about 1e77).
 void fill_contact_geometry(const CcdQuery& query, CcdResult& result) {
-  std::array<Eigen::Vector3d, 4> x;
-  for (int i = 0; i < 4; ++i) x[i] = query.start[i] + result.toi * (query.end[i] - query.start[i]);
+  double largest = 0.0;
+  for (int i = 0; i < 4; ++i)
+    largest = std::max({largest, query.start[i].cwiseAbs().maxCoeff(), query.end[i].cwiseAbs().maxCoeff()});
+  const double scale = largest > 0.0 ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+  std::array<Eigen::Vector3d, 4> x, start;
+  for (int i = 0; i < 4; ++i) {
+    start[i] = scale * query.start[i];
+    x[i] = start[i] + result.toi * (scale * query.end[i] - start[i]);
+  }
   Eigen::Vector3d normal;
   Eigen::Vector3d towards_first;
   if (query.kind == PairKind::VertexFace) {
@@ -304,7 +313,7 @@ void fill_contact_geometry(const CcdQuery& query, CcdResult& result) {
       result.parameters = {w1, w2};
     }
     normal = e1.cross(e2);
-    towards_first = query.start[0] - query.start[1];
+    towards_first = start[0] - start[1];
   } else {
     const Eigen::Vector3d da = x[1] - x[0];
     const Eigen::Vector3d db = x[3] - x[2];
@@ -317,7 +326,7 @@ void fill_contact_geometry(const CcdQuery& query, CcdResult& result) {
       result.parameters = {s, u};
     }
     normal = da.cross(db);
-    towards_first = (query.start[0] + query.start[1]) - (query.start[2] + query.start[3]);
+    towards_first = (start[0] + start[1]) - (start[2] + start[3]);
   }
   const double length = normal.norm();
   if (!(length > 0.0) || !std::isfinite(length)) return;

@@ -92,10 +92,17 @@ struct Direction {
   double norm;
 };
 
+// A thickness the filters can reason with: finite and >= 0 (else they cull nothing; continuous_collision reports such a
+// query as a conservative hit).
+bool usable_thickness(const CcdSettings& settings) {
+  return settings.thickness >= 0.0 && std::isfinite(settings.thickness);
+}
+
 }  // namespace
 
 bool nonpenetration_filter_culls(const CcdQuery& query, const CcdSettings& settings) {
-  if (settings.thickness > 0.0) return false;  // a root-free D says nothing about the distance staying above h
+  // A root-free D says nothing about the distance staying above h.
+  if (settings.thickness != 0.0 || !usable_thickness(settings)) return false;
   const std::array<Eigen::Vector3d, 2> a{query.start[1] - query.start[0], query.end[1] - query.end[0]};
   const std::array<Eigen::Vector3d, 2> b{query.start[2] - query.start[0], query.end[2] - query.end[0]};
   const std::array<Eigen::Vector3d, 2> c{query.start[3] - query.start[0], query.end[3] - query.end[0]};
@@ -118,6 +125,7 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings)
 
 bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
                              const ProjectionFilterOptions& options) {
+  if (!usable_thickness(settings)) return false;
   // Eq. (10)'s directions without their normalisation (the sign tests do not depend on it; h is scaled by |s|).
   static const std::array<Direction, 5> kDirections{
       Direction{Eigen::Vector3d(1, 0, 0), 1.0}, Direction{Eigen::Vector3d(1, 1, 0), std::sqrt(2.0)},

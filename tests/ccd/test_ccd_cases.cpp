@@ -212,3 +212,37 @@ TEST_CASE("exact reference on rational text coordinates", "[ccd][reference]") {
   points[0][0][1] = "0";
   CHECK_THROWS_AS(ccd::exact_collision_reference(PairKind::VertexFace, points), std::invalid_argument);
 }
+
+TEST_CASE("contact parameters and normal do not depend on the scale", "[ccd][vertex-face][edge-edge]") {
+  const auto vertex_face = vertex_past_triangle({0.25, 0.25, 1}, {0.25, 0.25, -1});
+  const auto edge_edge = edge_past_x_axis({Vector3d(0.5, -1, 1), Vector3d(0.5, 1, 1)},
+                                          {Vector3d(0.5, -1, -1), Vector3d(0.5, 1, -1)});
+  for (const ccd::CcdQuery& query : {vertex_face, edge_edge}) {
+    const ccd::CcdResult unit = ccd::continuous_collision(query);
+    REQUIRE(unit.hit);
+    for (const double factor : {0x1p-900, 0x1p-300, 0x1p260, 0x1p300, 0x1p900}) {  // 1e-271 .. 1e271
+      INFO("kind " << static_cast<int>(query.kind) << ", scale " << factor);
+      const ccd::CcdResult result = ccd::continuous_collision(scaled(query, factor));
+      CHECK(result.hit);
+      CHECK(result.parameters[0] == Approx(unit.parameters[0]));
+      CHECK(result.parameters[1] == Approx(unit.parameters[1]));
+      CHECK(result.normal.isApprox(unit.normal));
+    }
+  }
+}
+
+TEST_CASE("with a NaN, infinite or negative thickness no filter culls and the CCD reports a conservative hit",
+          "[ccd][filters][bad-input]") {
+  const auto far_apart = vertex_past_triangle({5, 5, 5}, {5, 5, 6});  // every filter culls it at thickness 0
+  REQUIRE(ccd::combined_filters_cull(far_apart, ccd::CcdSettings{}));
+  for (const double thickness : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -1.0}) {
+    INFO("thickness " << thickness);
+    const ccd::CcdSettings settings{thickness};
+    CHECK_FALSE(ccd::nonpenetration_filter_culls(far_apart, settings));
+    CHECK_FALSE(ccd::projection_filter_culls(far_apart, settings));
+    CHECK_FALSE(ccd::combined_filters_cull(far_apart, settings));
+    const ccd::CcdResult result = ccd::continuous_collision(far_apart, settings);
+    CHECK(result.hit);
+    CHECK(result.state == ccd::CcdState::ConservativeHit);
+  }
+}

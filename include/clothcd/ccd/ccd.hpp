@@ -91,6 +91,7 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 
 /// Algebraic non-penetration filter: true when the coplanarity cubic provably has no root in [0, 1] (its four Bernstein
 /// coefficients have one strict sign beyond their rounding-error bound). Disabled (always false) for thickness > 0.
+/// Every filter culls nothing when the thickness is NaN, infinite or negative.
 [[nodiscard]] bool nonpenetration_filter_culls(const CcdQuery& query, const CcdSettings& settings = {});
 
 /// Spatial linear projection filter: true when, along one of the paper's five directions (eq. 10), every point of one
