@@ -73,6 +73,7 @@ class Parser {
       do {
         skip_space();
         std::string key = parse_string();
+        if (value.find(key)) fail("duplicate key '" + key + "'");
         expect(':');
         value.object.emplace_back(std::move(key), parse_value(depth + 1));
       } while (consume(','));

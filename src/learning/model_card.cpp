@@ -40,11 +40,18 @@ double number(const json::Value& root, const std::string& key, const std::string
   return value;
 }
 
-std::size_t count(const json::Value& root, const std::string& key, const std::string& path) {
+// A whole number in [0, below): larger values would not convert (2^64 + 15 became 0, 4294967297 a version of 1).
+unsigned long long whole(const json::Value& root, const std::string& key, const std::string& path, double below) {
   const double value = number(root, key, path);
-  if (value < 0.0 || value != std::floor(value))
-    throw std::runtime_error(path + ": model card field '" + key + "' is not a count");
-  return static_cast<std::size_t>(value);
+  if (value < 0.0 || value != std::floor(value) || !(value < below))
+    throw std::runtime_error(path + ": model card field '" + key + "' is not a whole number from 0 below " +
+                             number_text(below));
+  return static_cast<unsigned long long>(value);
+}
+
+// A count (of rows, features, neurons, ...): a whole number below 2^53, where doubles stop counting exactly.
+std::size_t count(const json::Value& root, const std::string& key, const std::string& path) {
+  return static_cast<std::size_t>(whole(root, key, path, 0x1p53));
 }
 
 std::vector<std::string> strings(const json::Value& root, const std::string& key, const std::string& path) {
@@ -94,7 +101,7 @@ ModelCard read_model_card(const std::string& path) {
   const json::Value root = json::parse(text.str(), path);
   if (root.kind != json::Value::Kind::Object) throw std::runtime_error(path + ": model card is not a JSON object");
   ModelCard card;
-  card.feature_version = static_cast<int>(count(root, "feature_version", path));
+  card.feature_version = static_cast<int>(whole(root, "feature_version", path, 1e6));
   card.feature_count = count(root, "feature_count", path);
   card.features = strings(root, "features", path);
   card.inputs = strings(root, "inputs", path);
@@ -110,7 +117,7 @@ ModelCard read_model_card(const std::string& path) {
   card.hidden_neurons = count(root, "hidden_neurons", path);
   card.max_neurons = count(root, "max_neurons", path);
   card.trials = count(root, "trials", path);
-  card.seed = static_cast<unsigned long long>(number(root, "seed", path));
+  card.seed = whole(root, "seed", path, 0x1p64);
   card.decision_threshold = number(root, "decision_threshold", path);
   card.drop_below = number(root, "drop_below", path);
   card.keep_from = root.find("keep_from") ? number(root, "keep_from", path) : card.decision_threshold;

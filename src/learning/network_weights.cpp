@@ -27,9 +27,13 @@ void validate_network_weights(const NetworkWeights& weights, const std::string& 
               std::to_string(inputs) + " inputs");
   require(all_finite(weights.input_minimum) && all_finite(weights.input_maximum), context,
           "non-finite value in the scaling layer");
-  for (std::size_t i = 0; i < inputs; ++i)
+  for (std::size_t i = 0; i < inputs; ++i) {
     require(weights.input_maximum[i] > weights.input_minimum[i], context,
             "input '" + weights.input_names[i] + "' has an empty scaling range (constant column)");
+    // A range wider than the largest double would scale every input to 0 or NaN: every pair kept, nothing culled.
+    require(std::isfinite(weights.input_maximum[i] - weights.input_minimum[i]), context,
+            "input '" + weights.input_names[i] + "' has a scaling range wider than the largest double");
+  }
   require(!weights.layers.empty(), context, "the network has no perceptron layer");
   std::size_t previous = inputs;
   for (std::size_t l = 0; l < weights.layers.size(); ++l) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -35,7 +36,8 @@ std::string read_text(const std::string& path) {
 }
 
 // A copy of the shared model directory whose network.xml (or card.json) is replaced by `edit(original)`.
-std::string edited_model(const std::string& name, const std::string& file, std::string (*edit)(const std::string&)) {
+std::string edited_model(const std::string& name, const std::string& file,
+                         const std::function<std::string(const std::string&)>& edit) {
   const std::string source = test::trained_model().directory;
   const std::string dir = (fs::temp_directory_path() / ("clothcd_bad_model_" + name)).string();
   fs::remove_all(dir);
@@ -207,6 +209,31 @@ TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
     return text.substr(0, value) + "14" + text.substr(text.find(',', value));
   });
   CHECK_THROWS_WITH(PairClassifier::load(wrong_count), Catch::Contains("feature_count"));
+
+  const auto with_field = [](const char* name, const char* field, const std::string& value) {
+    return edited_model(name, "card.json", [field, value](const std::string& text) {
+      const std::string key = std::string("\"") + field + "\": ";
+      const std::size_t at = text.find(key) + key.size();
+      return text.substr(0, at) + value + text.substr(text.find_first_of(",}", at));
+    });
+  };
+  // Numbers beyond what the fields can hold: 4294967297 became version 1, 2^64 + 15 a count of 0.
+  CHECK_THROWS_WITH(PairClassifier::load(with_field("big_version", "feature_version", "4294967297")),
+                    Catch::Contains("feature_version") && Catch::Contains("whole number"));
+  CHECK_THROWS_WITH(PairClassifier::load(with_field("big_rows", "training", "18446744073709551631")),
+                    Catch::Contains("training") && Catch::Contains("whole number"));
+  CHECK_THROWS_WITH(PairClassifier::load(with_field("big_seed", "seed", "1e30")), Catch::Contains("seed"));
+  const std::string duplicate = edited_model("duplicate", "card.json", [](const std::string& text) {
+    return "{\n  \"seed\": 7," + text.substr(1);  // a second "seed"
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(duplicate), Catch::Contains("duplicate key 'seed'"));
+  const std::string wide = edited_model("wide_scaling", "network.xml", [](const std::string& text) {
+    const std::size_t min_at = text.find("<Minimum>") + std::string("<Minimum>").size();
+    std::string edited = text.substr(0, min_at) + "-1e308" + text.substr(text.find("</Minimum>", min_at));
+    const std::size_t max_at = edited.find("<Maximum>") + std::string("<Maximum>").size();
+    return edited.substr(0, max_at) + "1e308" + edited.substr(edited.find("</Maximum>", max_at));
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(wide), Catch::Contains("wider than the largest double"));
 
   const std::string broken_card = edited_model("card", "card.json", [](const std::string& text) {
     return text.substr(0, 40);
