@@ -164,6 +164,11 @@ OneSide sample_against(const TriangleMesh& from, const TriangleTree& to, const H
 
 HausdorffResult measure_hausdorff(const TriangleMesh& a, const TriangleMesh& b, const HausdorffSettings& settings) {
   if (a.face_count() == 0 || b.face_count() == 0) throw std::invalid_argument("measure_hausdorff: a mesh has no faces");
+  for (const TriangleMesh* mesh : {&a, &b}) {
+    if (!mesh->vertices.allFinite()) throw std::invalid_argument("measure_hausdorff: a coordinate is NaN or infinite");
+    if (mesh->faces.minCoeff() < 0 || mesh->faces.maxCoeff() >= mesh->vertex_count())
+      throw std::invalid_argument("measure_hausdorff: a face index is out of range");
+  }
   if (settings.samples < 0) throw std::invalid_argument("measure_hausdorff: negative sample count");
   const TriangleTree tree_a(a), tree_b(b);
   const OneSide ab = sample_against(a, tree_b, settings);

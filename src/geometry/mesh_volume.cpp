@@ -8,6 +8,8 @@
 namespace clothcd::geometry {
 
 double mesh_volume(const TriangleMesh& mesh) {
+  if (mesh.face_count() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertex_count()))
+    throw std::invalid_argument("mesh_volume: a face index is out of range");
   // Tetrahedra against the centroid of the vertices rather than the origin: same sum for a closed mesh, less round-off
   // when the model sits far from the origin.
   const Eigen::Vector3d o = mesh.vertex_count() > 0 ? Eigen::Vector3d(mesh.vertices.colwise().mean().transpose())

@@ -2,6 +2,8 @@
 #include "clothcd/mesh/mesh_validation.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "clothcd/mesh/mesh_error.hpp"
 
@@ -29,7 +31,11 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& context) {
 }
 
 bool is_degenerate_face(const TriangleMesh& mesh, Eigen::Index f) {
+  if (f < 0 || f >= mesh.face_count()) throw std::out_of_range("is_degenerate_face: no face " + std::to_string(f));
   const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+  const int n = static_cast<int>(mesh.vertex_count());
+  if (a < 0 || b < 0 || c < 0 || a >= n || b >= n || c >= n)
+    throw std::out_of_range("is_degenerate_face: face " + std::to_string(f) + " has a vertex index out of range");
   if (a == b || b == c || a == c) return true;
   const Eigen::Vector3d pa = mesh.vertices.row(a), pb = mesh.vertices.row(b), pc = mesh.vertices.row(c);
   return (pb - pa).cross(pc - pa).squaredNorm() == 0.0;

@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 
 #include "simulation/primitive_distance.hpp"
 
@@ -83,6 +85,19 @@ void rebuild_contact(Collision& c, const StepContext& context, const Vertices& c
   c.normal = n.squaredNorm() > 0 ? n.normalized() : Eigen::Vector3d::Zero();
 }
 
+// Throws std::invalid_argument when a vertex of `c` names a body or vertex that does not exist.
+void check_collision(const Collision& c, const StepContext& context) {
+  for (const VertexRef& v : c.vertices) {
+    const Eigen::Index count = v.body == 0 ? context.cloth_start->rows()
+                               : v.body > 0 && v.body <= static_cast<int>(context.obstacle_start->size())
+                                   ? (*context.obstacle_start)[static_cast<std::size_t>(v.body - 1)].rows()
+                                   : -1;
+    if (count < 0 || v.vertex < 0 || v.vertex >= count)
+      throw std::invalid_argument("collision response: vertex " + std::to_string(v.vertex) + " of body " +
+                                  std::to_string(v.body) + " does not exist");
+  }
+}
+
 }  // namespace
 
 int discard_disproved(std::vector<Collision>& collisions, const StepContext& context, const Vertices& cloth_end,
@@ -133,6 +148,7 @@ void apply_impulses(const std::vector<Collision>& collisions, const StepContext&
                     const ResponseSettings& settings, Vertices& cloth_end) {
   const double target = settings.thickness * settings.separation;
   for (const Collision& c : collisions) {
+    check_collision(c, context);
     const std::array<double, 4> w = pair_weights(c);
     std::array<double, 4> inverse_mass{};
     double denominator = 0;
@@ -172,6 +188,7 @@ void apply_impulses(const std::vector<Collision>& collisions, const StepContext&
 int FailSafe::absorb(const std::vector<Collision>& collisions, const StepContext& context) {
   int changed = 0;
   for (const Collision& c : collisions) {
+    check_collision(c, context);
     int target = 0;
     for (const VertexRef& v : c.vertices) {
       if (v.body > 0 && (*context.obstacles)[v.body - 1].moves_during(context.step)) target = std::max(target, v.body);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace clothcd::simulation {
 namespace {
@@ -28,6 +29,11 @@ void filter_pinned(const ClothModel& model, Eigen::Ref<Eigen::VectorXd> v) {
 }
 
 }  // namespace
+
+ImplicitIntegrator::ImplicitIntegrator(const IntegratorSettings& settings) : settings_(settings) {
+  if (settings.max_cg_iterations < 1 || !(settings.cg_tolerance > 0.0 && settings.cg_tolerance < 1.0))
+    throw std::invalid_argument("integrator: need max_cg_iterations >= 1 and 0 < cg_tolerance < 1");
+}
 
 void ImplicitIntegrator::multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
   out = mass_diagonal_.cwiseProduct(p);
@@ -56,6 +62,12 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
                                                         Vertices& velocities) {
   const ClothSettings& cs = model.settings;
   const int n = model.vertex_count();
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw std::invalid_argument("implicit integration: the time step must be finite and > 0, got " + std::to_string(dt));
+  if (state.positions.rows() != n || state.velocities.rows() != n)
+    throw std::invalid_argument("implicit integration: the state has " + std::to_string(state.positions.rows()) +
+                                " positions and " + std::to_string(state.velocities.rows()) + " velocities for " +
+                                std::to_string(n) + " cloth vertices");
   const double h = dt;
   const Eigen::Map<const Eigen::VectorXd> x(state.positions.data(), 3 * n);
   const Eigen::Map<const Eigen::VectorXd> v(state.velocities.data(), 3 * n);

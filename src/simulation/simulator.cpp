@@ -31,6 +31,9 @@ const SimulationSettings& checked(const SimulationSettings& s) {
   if (!(s.response.contact_reach >= 0) || !std::isfinite(s.response.contact_reach)) {
     throw std::invalid_argument("contact_reach must be >= 0 and finite");
   }
+  if (!(s.response.separation >= 1.0 && s.response.separation <= 100.0)) {
+    throw std::invalid_argument("separation must be from 1 to 100 (thicknesses)");
+  }
   if (s.response.impulse_rounds < 0 || s.response.failsafe_rounds < 1) {
     throw std::invalid_argument("impulse_rounds must be >= 0 and failsafe_rounds >= 1");
   }

@@ -33,4 +33,10 @@ TEST_CASE("Hausdorff distance is two-sided", "[geometry][hausdorff]") {
   CHECK(r.b_to_a == Approx(0.5));
   CHECK(r.max == Approx(0.5));
   CHECK_THROWS_AS(measure_hausdorff(TriangleMesh{}, square), std::invalid_argument);
+  TriangleMesh bad = square;
+  bad.faces(0, 1) = static_cast<int>(bad.vertex_count());
+  CHECK_THROWS_WITH(measure_hausdorff(square, bad), Catch::Contains("out of range"));
+  bad = square;
+  bad.vertices(0, 2) = std::nan("");
+  CHECK_THROWS_WITH(measure_hausdorff(bad, square), Catch::Contains("NaN"));
 }

@@ -31,4 +31,7 @@ TEST_CASE("Mesh volume of a UV sphere approaches 4/3 pi r^3 from below", "[geome
 
 TEST_CASE("Compactness needs a volume", "[geometry][volume]") {
   CHECK_THROWS_AS(compactness(1.0, make_grid(3, 3)), std::invalid_argument);
+  TriangleMesh bad = make_box();
+  bad.faces(2, 0) = -1;
+  CHECK_THROWS_AS(mesh_volume(bad), std::invalid_argument);
 }

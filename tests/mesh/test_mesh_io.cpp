@@ -251,4 +251,7 @@ TEST_CASE("validate_mesh rejects NaN, bad indices and empty meshes", "[mesh][val
   CHECK_THROWS_WITH(clothcd::validate_mesh(bad_index, "box"), Catch::Contains("face 5"));
   TriangleMesh empty;
   CHECK_THROWS_WITH(clothcd::validate_mesh(empty, "empty"), Catch::Contains("no faces"));
+  CHECK_THROWS_AS(clothcd::is_degenerate_face(bad_index, 5), std::out_of_range);
+  CHECK_THROWS_AS(clothcd::is_degenerate_face(mesh, mesh.face_count()), std::out_of_range);
+  CHECK_THROWS_AS(clothcd::drop_degenerate_faces(bad_index), std::out_of_range);
 }

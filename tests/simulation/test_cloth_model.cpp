@@ -89,4 +89,9 @@ TEST_CASE("a time step that overflows the implicit system is an error, not a fro
   Vertices v;
   CHECK_THROWS_WITH(integrator.predict_velocities(model, state, 1e300, v), Catch::Contains("time step"));
   CHECK_NOTHROW(integrator.predict_velocities(model, state, 1.0, v));
+  for (const double dt : {-1.0, 0.0, std::numeric_limits<double>::quiet_NaN()})
+    CHECK_THROWS_AS(integrator.predict_velocities(model, state, dt, v), std::invalid_argument);
+  ClothState short_state = state;
+  short_state.velocities.conservativeResize(3, 3);
+  CHECK_THROWS_WITH(integrator.predict_velocities(model, short_state, 0.01, v), Catch::Contains("3 velocities"));
 }

@@ -79,6 +79,19 @@ TEST_CASE("a pair already apart by the thickness gets no impulse", "[simulation]
   CHECK(end == f.start);
 }
 
+TEST_CASE("a collision naming a vertex or body that does not exist is refused", "[simulation][response][bad-input]") {
+  Fixture f;
+  Vertices end = f.start;
+  for (const VertexRef bad : {VertexRef{0, 99}, VertexRef{0, -1}, VertexRef{1, 3}, VertexRef{2, 0}, VertexRef{-1, 0}}) {
+    Collision c = vertex_on_ground(0.25, 0.25);
+    c.vertices[1] = bad;
+    CHECK_THROWS_WITH(apply_impulses({c}, f.context(), {}, end), Catch::Contains("does not exist"));
+    FailSafe failsafe(static_cast<int>(f.start.rows()));
+    CHECK_THROWS_WITH(failsafe.absorb({c}, f.context()), Catch::Contains("does not exist"));
+  }
+  CHECK(end == f.start);
+}
+
 TEST_CASE("the fail-safe freezes static contacts and carries vertices with a moving obstacle", "[simulation][response]") {
   Fixture f;
   Vertices end = f.start;

@@ -141,6 +141,18 @@ TEST_CASE("bad simulation input fails with a clear message", "[simulation][bad-i
     settings.response.contact_reach = reach;
     CHECK_THROWS_WITH(Simulator(scene, settings), Catch::Contains("contact_reach"));
   }
+  for (const double separation : {std::numeric_limits<double>::quiet_NaN(), 0.5, 1e300}) {
+    SimulationSettings settings;
+    settings.response.separation = separation;  // NaN reached detect() as NaN positions
+    CHECK_THROWS_WITH(Simulator(scene, settings), Catch::Contains("separation"));
+  }
+  for (const IntegratorSettings integrator : {IntegratorSettings{0, 1e-3}, IntegratorSettings{-5, 1e-3},
+                                              IntegratorSettings{20, std::numeric_limits<double>::quiet_NaN()},
+                                              IntegratorSettings{20, 0.0}}) {
+    SimulationSettings settings;
+    settings.integrator = integrator;  // each froze the cloth before: no CG iteration ran
+    CHECK_THROWS_WITH(Simulator(scene, settings), Catch::Contains("cg_"));
+  }
   SceneSettings zero;
   zero.name = "box";
   zero.resolution = 0;

@@ -24,7 +24,7 @@ struct HausdorffResult {
 
 /// Samples each surface (vertices, face centroids, and `samples` random points by area) and measures the distance of
 /// every sample to the other surface exactly (closest point on triangles through a bounding volume hierarchy).
-/// Throws std::invalid_argument when either mesh has no faces.
+/// Throws std::invalid_argument when either mesh has no faces, a non-finite coordinate or a face index out of range.
 [[nodiscard]] HausdorffResult measure_hausdorff(const TriangleMesh& a, const TriangleMesh& b,
                                                 const HausdorffSettings& settings = {});
 

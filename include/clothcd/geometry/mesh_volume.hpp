@@ -7,7 +7,8 @@
 namespace clothcd::geometry {
 
 /// Signed volume enclosed by `mesh` by the divergence theorem: sum over faces of a . (b x c) / 6. Positive for a closed
-/// mesh with outward (counter-clockwise) faces; meaningless for an open mesh. Units: model units cubed.
+/// mesh with outward (counter-clockwise) faces; meaningless for an open mesh. Units: model units cubed. Throws
+/// std::invalid_argument for a face index out of range.
 [[nodiscard]] double mesh_volume(const TriangleMesh& mesh);
 
 /// Compactness tau = bounding_volume / |mesh_volume(mesh)| (>= 1 for a true bound of a closed mesh; smaller is tighter).

@@ -10,6 +10,7 @@
 ///     vertices all move by one rigid motion keeps its start-of-step (intersection-free) configuration up to an
 ///     invertible affine map, so it cannot cross during the step.
 
+#include <algorithm>
 #include <vector>
 
 #include "clothcd/detection/collision.hpp"
@@ -21,7 +22,7 @@ namespace clothcd::simulation {
 /// Settings of the response.
 struct ResponseSettings {
   double thickness = 0.004;    ///< Minimum separation the impulses restore, scene units (also the detector's).
-  double separation = 1.25;    ///< Impulses push a pair to separation * thickness, so it is not reported again at once.
+  double separation = 1.25;    ///< Impulses push a pair to separation * thickness (1..100), so it is not reported again at once.
   double friction = 0.3;       ///< Coulomb friction coefficient.
   int impulse_rounds = 4;      ///< Detection + impulse rounds before the fail-safe.
   int failsafe_rounds = 64;    ///< Upper bound on fail-safe rounds (each one detection call).
@@ -54,18 +55,20 @@ int discard_disproved(std::vector<Collision>& collisions, const StepContext& con
 [[nodiscard]] double start_gap(const Collision& collision, const StepContext& context);
 
 /// Applies one Gauss-Seidel sweep of impulses for `collisions` (in their given order) to the cloth's end-of-step
-/// positions `cloth_end` (#V x 3). Obstacles and pinned vertices do not move.
+/// positions `cloth_end` (#V x 3). Obstacles and pinned vertices do not move. Throws std::invalid_argument for a
+/// collision naming a body or vertex that does not exist.
 void apply_impulses(const std::vector<Collision>& collisions, const StepContext& context,
                     const ResponseSettings& settings, Vertices& cloth_end);
 
 /// The fail-safe's bookkeeping: per cloth vertex, free (-1), static (0) or carried by obstacle body k (k >= 1).
 class FailSafe {
  public:
-  /// Starts with every vertex of a `vertex_count`-vertex cloth free.
-  explicit FailSafe(int vertex_count) : group_(vertex_count, -1) {}
+  /// Starts with every vertex of a `vertex_count`-vertex cloth free (a negative count is an empty cloth).
+  explicit FailSafe(int vertex_count) : group_(static_cast<std::size_t>(std::max(vertex_count, 0)), -1) {}
 
   /// Puts the cloth vertices of every collision into the group that stops their relative motion; returns how many
-  /// vertices changed group (0 means the fail-safe has settled).
+  /// vertices changed group (0 means the fail-safe has settled). Throws std::invalid_argument for a collision naming a
+  /// body or vertex that does not exist.
   int absorb(const std::vector<Collision>& collisions, const StepContext& context);
 
   /// Overwrites `cloth_end` for every grouped vertex: static ones at their start position, carried ones moved with

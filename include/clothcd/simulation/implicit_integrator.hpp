@@ -28,12 +28,14 @@ struct IntegratorResult {
 /// Holds scratch buffers so that repeated steps do not allocate.
 class ImplicitIntegrator {
  public:
-  /// Creates an integrator with the given solve settings.
-  explicit ImplicitIntegrator(const IntegratorSettings& settings = {}) : settings_(settings) {}
+  /// Creates an integrator with the given solve settings. Throws std::invalid_argument unless max_cg_iterations >= 1
+  /// and 0 < cg_tolerance < 1.
+  explicit ImplicitIntegrator(const IntegratorSettings& settings = {});
 
   /// Writes the end-of-step velocities (#V x 3) for positions and velocities `state` and step `dt` seconds (> 0) into
   /// `velocities`. Positions are not changed: the caller moves x1 = x0 + dt v1 and applies collision response.
-  /// Throws std::runtime_error when the system overflows (a time step far too large for the stiffness or speeds).
+  /// Throws std::runtime_error when the system overflows (a time step far too large for the stiffness or speeds), and
+  /// std::invalid_argument for dt not finite and > 0 or a state whose sizes differ from the model's.
   IntegratorResult predict_velocities(const ClothModel& model, const ClothState& state, double dt,
                                       Vertices& velocities);
 
