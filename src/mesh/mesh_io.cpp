@@ -5,7 +5,9 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
@@ -213,6 +215,9 @@ TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadRep
   check_ply_header(path);
   detail::check_off_body(path);
   detail::check_ply_body(path);
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".obj") detail::check_obj_numbers(path);
   LoadReport local_report;
   const std::lock_guard<std::mutex> lock(import_mutex());
   const ScopedErrorLog log;

@@ -38,6 +38,20 @@ long long whole_number(const std::string& token) {
   return value;
 }
 
+// Throws when a coordinate token has more integer digits than assimp's text readers convert (from 20 digits, about
+// 2^64, they silently read 0): such a number must be written with an exponent.
+void check_coordinate(const std::string& token, const std::string& file, const std::string& where) {
+  std::size_t begin = token.find_first_not_of("+-");
+  if (begin == std::string::npos) return;
+  begin = token.find_first_not_of('0', begin);
+  if (begin == std::string::npos) return;
+  const std::size_t end = token.find_first_not_of("0123456789", begin);
+  const std::size_t digits = (end == std::string::npos ? token.size() : end) - begin;
+  if (digits >= 20)
+    throw MeshError(file, where + ": coordinate '" + token + "' has " + std::to_string(digits) +
+                              " integer digits, more than the reader converts (write it with an exponent)");
+}
+
 // Bytes of a PLY scalar type, 0 for an unknown name.
 int ply_type_bytes(const std::string& type) {
   if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
@@ -64,6 +78,7 @@ void check_off_body(const std::filesystem::path& path) {
     if (!next_tokens(in, tokens) || tokens.size() < 3)
       throw MeshError(file, "OFF file ends (or a vertex line is short) at vertex " + std::to_string(v) + " of " +
                                 std::to_string(vertices) + " declared (truncated file or wrong count)");
+    for (const std::string& token : tokens) check_coordinate(token, file, "OFF vertex " + std::to_string(v));
   }
   for (long long f = 0; f < faces; ++f) {
     if (!next_tokens(in, tokens))
@@ -118,7 +133,10 @@ void check_ply_body(const std::filesystem::path& path) {
   if (ascii) {
     long long lines = 0;
     while (lines < declared && std::getline(in, line)) {
-      if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      ++lines;
+      std::istringstream words(line);
+      for (std::string token; words >> token;) check_coordinate(token, file, "PLY element line " + std::to_string(lines));
     }
     if (lines < declared)
       throw MeshError(file, "PLY body holds " + std::to_string(lines) + " element lines, its header declares " +
@@ -134,6 +152,19 @@ void check_ply_body(const std::filesystem::path& path) {
     throw MeshError(file, "binary PLY body holds " + std::to_string(static_cast<long long>(body)) +
                               " bytes, its header declares at least " + std::to_string(least_bytes) +
                               " (truncated file or wrong count)");
+}
+
+void check_obj_numbers(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  long long vertex = 0;
+  while (std::getline(in, line)) {
+    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    ++vertex;
+    std::istringstream words(line.substr(1));
+    for (std::string token; words >> token;)
+      check_coordinate(token, path.string(), "OBJ vertex " + std::to_string(vertex));
+  }
 }
 
 }  // namespace clothcd::detail

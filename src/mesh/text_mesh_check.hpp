@@ -9,14 +9,18 @@
 namespace clothcd::detail {
 
 /// For an OFF file (first token OFF): throws MeshError naming the file and the face or count when a count is not a
-/// whole number, the body ends before the declared vertices and faces, a face has fewer than 3 vertices, or an index
-/// is not a whole number in 0 .. vertices - 1. Other files pass.
+/// whole number, the body ends before the declared vertices and faces, a vertex coordinate has 20 or more integer
+/// digits, a face has fewer than 3 vertices, or an index is not a whole number in 0 .. vertices - 1. Other files pass.
 void check_off_body(const std::filesystem::path& path);
 
 /// For a PLY file: throws MeshError when an element count is not a whole number, a property type is unknown, an ASCII
-/// body holds fewer lines than the elements its header declares (one line per element), or a binary body is shorter
-/// than the header allows (assimp's binary reader allocates the declared count first: 2e9 vertices in a 300-byte file
-/// took gigabytes). Other files pass.
+/// body holds fewer lines than the elements its header declares (one line per element) or a number of 20 or more
+/// integer digits, or a binary body is shorter than the header allows (assimp's binary reader allocates the declared
+/// count first: 2e9 vertices in a 300-byte file took gigabytes). Other files pass.
 void check_ply_body(const std::filesystem::path& path);
+
+/// For an OBJ file: throws MeshError naming the file and vertex when a vertex coordinate has 20 or more integer digits
+/// (assimp's readers, here and in OFF and ASCII PLY, read such numbers as 0). Call only for OBJ files.
+void check_obj_numbers(const std::filesystem::path& path);
 
 }  // namespace clothcd::detail

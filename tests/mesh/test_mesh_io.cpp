@@ -204,6 +204,15 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
     require_load_error(write_file(dir / "huge_binary.ply", binary(2000000000)), "truncated");
     require_load_error(write_file(dir / "long_binary.ply", binary(4)), "truncated");
   }
+  SECTION("a coordinate with more integer digits than the readers convert (they read 0)") {
+    const std::string big = "100000000000000000000";
+    require_load_error(write_file(dir / "big.obj", "v " + big + " 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "integer digits");
+    require_load_error(write_file(dir / "big.off", "OFF\n3 1 0\n" + big + " 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                       "integer digits");
+    require_load_error(write_file(dir / "big.ply", ply_header(3, 1) + big + " 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                       "integer digits");
+    CHECK(load_mesh(write_file(dir / "exponent.obj", "v 1e20 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).vertices(0, 0) == double(1e20f));  // assimp keeps floats
+  }
   SECTION("no faces") { require_load_error(write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\n"), ""); }
   SECTION("only degenerate faces") {
     require_load_error(write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate");
