@@ -208,6 +208,13 @@ void save_ascii_ply(const TriangleMesh& mesh, std::ofstream& out) {
   }
 }
 
+// The file name's extension in lower case (".obj").
+std::string lower_extension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  return extension;
+}
+
 }  // namespace
 
 TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadReport* report) {
@@ -215,9 +222,7 @@ TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadRep
   check_ply_header(path);
   detail::check_off_body(path);
   detail::check_ply_body(path);
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension == ".obj") detail::check_obj_numbers(path);
+  if (lower_extension(path) == ".obj") detail::check_obj_numbers(path);
   LoadReport local_report;
   const std::lock_guard<std::mutex> lock(import_mutex());
   const ScopedErrorLog log;
@@ -236,11 +241,13 @@ TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadRep
 }
 
 void save_mesh(const TriangleMesh& mesh, const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lower_extension(path);
   if (extension != ".obj" && extension != ".ply") {
     throw MeshError(path.string(), "unsupported output format '" + extension + "' (use .obj or .ply)");
   }
+  if (!mesh.vertices.allFinite()) throw MeshError(path.string(), "not written: a coordinate is NaN or infinite");
+  if (mesh.face_count() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertex_count()))
+    throw MeshError(path.string(), "not written: a face index is outside 0.." + std::to_string(mesh.vertex_count() - 1));
   std::ofstream out(path, std::ios::binary);
   if (!out) throw MeshError(path.string(), "cannot be opened for writing");
   if (extension == ".obj") {

@@ -247,6 +247,13 @@ TEST_CASE("saving rejects unknown formats and unwritable paths", "[mesh][io][err
   const TriangleMesh mesh = clothcd::make_box();
   CHECK_THROWS_AS(save_mesh(mesh, dir / "box.stl"), MeshError);
   CHECK_THROWS_AS(save_mesh(mesh, dir / "no-such-folder" / "box.obj"), MeshError);
+  TriangleMesh bad_index = mesh;
+  bad_index.faces(0, 2) = 99;
+  CHECK_THROWS_WITH(save_mesh(bad_index, dir / "bad.obj"), Catch::Contains("face index"));
+  TriangleMesh nan = mesh;
+  nan.vertices(1, 1) = std::nan("");
+  CHECK_THROWS_WITH(save_mesh(nan, dir / "nan.ply"), Catch::Contains("NaN"));
+  CHECK_FALSE(std::filesystem::exists(dir / "bad.obj"));
 }
 
 TEST_CASE("validate_mesh rejects NaN, bad indices and empty meshes", "[mesh][validation]") {

@@ -30,7 +30,8 @@ struct LoadReport {
                                      LoadReport* report = nullptr);
 
 /// Writes `mesh` as Wavefront OBJ (".obj") or ASCII PLY (".ply"), chosen by extension, with coordinates at full double
-/// precision (17 significant digits). Throws MeshError on an unknown extension or a write failure.
+/// precision (17 significant digits). Throws MeshError on an unknown extension, a non-finite coordinate, a face index
+/// out of range (nothing is written then) or a write failure.
 void save_mesh(const TriangleMesh& mesh, const std::filesystem::path& path);
 
 }  // namespace clothcd
