@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "power_of_two_scale.hpp"
+
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
@@ -40,10 +42,9 @@ struct FileCloser {
 ConvexHull compute_convex_hull(const Vertices& points) {
   if (!points.allFinite()) throw std::invalid_argument("compute_convex_hull: non-finite coordinate");
   if (points.rows() < 4) return degenerate_hull(points);
-  // Qhull squares coordinates: scaled by a power of two (exact) so that the largest magnitude is about 1, since from
-  // about 1e155 its products overflow (wrong hulls, then a crash inside it from about 1e170).
-  const double largest = points.cwiseAbs().maxCoeff();
-  const Vertices scaled = largest > 0.0 ? Vertices(points * std::ldexp(1.0, -std::ilogb(largest))) : points;
+  // Qhull squares coordinates: far from magnitude 1 it gets the points scaled by a power of two, since from about 1e155
+  // its products overflow (wrong hulls, then a crash inside it from about 1e170).
+  const Vertices scaled = points * std::ldexp(1.0, -detail::far_scale_exponent(points));
   std::vector<coordT> coords(scaled.data(), scaled.data() + scaled.size());
   std::unique_ptr<FILE, FileCloser> quiet(std::fopen("/dev/null", "w"));
   qhT qh_storage;

@@ -17,6 +17,7 @@
 #include "clothcd/geometry/simplify.hpp"
 #include "clothcd/cpu_features.hpp"
 #include "min_area_rectangle.hpp"
+#include "power_of_two_scale.hpp"
 #include "slab_extremes.hpp"
 
 #if defined(CLOTHCD_AVX2_PATHS)
@@ -415,11 +416,9 @@ void grow_obb(Obb& box, const Vertices& points) {
 
 Obb compute_obb(const TriangleMesh& mesh, ObbMethod method, const ObbSettings& settings) {
   check_input(mesh, "compute_obb");
-  // Scaled by a power of two (exact) so that the largest coordinate magnitude is in [1, 2): the methods multiply
-  // coordinates (covariances, areas, volumes), which overflow from about 1e100 and underflow below about 1e-100.
-  const double largest = mesh.vertices.cwiseAbs().maxCoeff();
-  const int exponent = largest > 0.0 ? std::ilogb(largest) : 0;
-  if (exponent < -60 || exponent > 60) {
+  // The methods multiply coordinates (covariances, areas, volumes): far from magnitude 1 they run on the mesh scaled by
+  // a power of two.
+  if (const int exponent = detail::far_scale_exponent(mesh.vertices)) {
     TriangleMesh scaled = mesh;
     scaled.vertices *= std::ldexp(1.0, -exponent);
     Obb box = compute_obb(scaled, method, settings);

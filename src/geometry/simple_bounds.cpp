@@ -8,6 +8,8 @@
 #include <numeric>
 #include <random>
 
+#include "power_of_two_scale.hpp"
+
 namespace clothcd::geometry {
 namespace {
 
@@ -80,6 +82,12 @@ Aabb compute_aabb(const Vertices& points, const std::vector<int>& indices) {
 Sphere compute_bounding_sphere(const Vertices& points) {
   const auto n = static_cast<size_t>(points.rows());
   if (n == 0) return {};
+  if (const int exponent = detail::far_scale_exponent(points)) {  // squared distances would overflow or underflow
+    Sphere s = compute_bounding_sphere(points * std::ldexp(1.0, -exponent));
+    s.center *= std::ldexp(1.0, exponent);
+    s.radius *= std::ldexp(1.0, exponent);
+    return s;
+  }
   std::vector<Point> p(n);
   for (size_t i = 0; i < n; ++i) p[i] = points.row(Eigen::Index(i)).transpose();
   std::shuffle(p.begin(), p.end(), std::mt19937_64(0x5eed));
@@ -110,6 +118,12 @@ Sphere compute_bounding_sphere(const Vertices& points) {
 
 Sphere compute_bounding_sphere_naive(const Vertices& points) {
   if (points.rows() == 0) return {};
+  if (const int exponent = detail::far_scale_exponent(points)) {
+    Sphere s = compute_bounding_sphere_naive(points * std::ldexp(1.0, -exponent));
+    s.center *= std::ldexp(1.0, exponent);
+    s.radius *= std::ldexp(1.0, exponent);
+    return s;
+  }
   const Aabb box = compute_aabb(points);
   Sphere s{0.5 * (box.min + box.max), 0.0};
   s.radius = std::sqrt((points.rowwise() - s.center.transpose()).rowwise().squaredNorm().maxCoeff());

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clothcd/geometry/simple_bounds.hpp"
+#include "clothcd/mesh/mesh_generators.hpp"
 #include "geometry/geometry_test_helpers.hpp"
 
 using namespace clothcd;
@@ -85,4 +86,15 @@ TEST_CASE("Welzl sphere bounds a real model and beats the naive sphere", "[geome
   const TriangleMesh cat = test::load_model("cat");
   check_sphere_bounds(cat.vertices);
   CHECK(compute_bounding_sphere(cat.vertices).radius < compute_bounding_sphere_naive(cat.vertices).radius);
+}
+
+TEST_CASE("Both spheres give the same ball at any scale", "[geometry][sphere]") {
+  const TriangleMesh unit = make_uv_sphere(1.0, 8, 4);
+  const Sphere welzl = compute_bounding_sphere(unit.vertices), naive = compute_bounding_sphere_naive(unit.vertices);
+  for (const double factor : {0x1p-900, 0x1p-300, 0x1p300, 0x1p900}) {
+    INFO("scale " << factor);
+    const Vertices scaled = unit.vertices * factor;
+    CHECK(compute_bounding_sphere(scaled).radius / factor == Approx(welzl.radius));
+    CHECK(compute_bounding_sphere_naive(scaled).radius / factor == Approx(naive.radius));
+  }
 }
