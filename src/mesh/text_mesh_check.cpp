@@ -2,6 +2,7 @@
 #include "mesh/text_mesh_check.hpp"
 
 #include <cerrno>
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -102,45 +103,68 @@ void check_ply_body(const std::filesystem::path& path) {
   std::string line;
   if (!std::getline(in, line) || line.rfind("ply", 0) != 0) return;
   const std::string file = path.string();
-  long long declared = 0;        // elements of all kinds
-  double least_bytes = 0.0;      // binary: the smallest body the header allows (each list at least its count)
-  long long element_count = 0;   // of the element whose properties are being read
+  struct Element {
+    std::string name;
+    long long count = 0;
+    std::vector<bool> is_list;  // per property: a list (count, then items) or one scalar
+  };
+  std::vector<Element> elements;
+  double least_bytes = 0.0;  // binary: the smallest body the header allows (each list at least its count)
   bool ascii = false;
   while (std::getline(in, line)) {
     std::istringstream words(line);
-    std::string keyword, name, count;
+    std::string keyword;
     words >> keyword;
     if (keyword == "format") {
+      std::string name;
       words >> name;
       ascii = name == "ascii";
     } else if (keyword == "element") {
-      words >> name >> count;
-      element_count = whole_number(count);
-      if (element_count < 0)
-        throw MeshError(file, "PLY element '" + name + "' has count '" + count + "', not a whole number");
-      declared += element_count;
+      Element element;
+      std::string count;
+      words >> element.name >> count;
+      element.count = whole_number(count);
+      if (element.count < 0)
+        throw MeshError(file, "PLY element '" + element.name + "' has count '" + count + "', not a whole number");
+      elements.push_back(element);
     } else if (keyword == "property") {
+      if (elements.empty()) throw MeshError(file, "PLY property before any element");
       std::string type;
       words >> type;
-      if (type == "list") words >> type;  // the list's count type: what every list holds at least
+      const bool list = type == "list";
+      if (list) words >> type;  // the list's count type: what every list holds at least
       const int bytes = ply_type_bytes(type);
       if (bytes == 0) throw MeshError(file, "PLY property type '" + type + "' is unknown");
-      least_bytes += static_cast<double>(element_count) * bytes;
+      elements.back().is_list.push_back(list);
+      least_bytes += static_cast<double>(elements.back().count) * bytes;
     } else if (keyword == "end_header") {
       break;
     }
   }
   if (ascii) {
-    long long lines = 0;
-    while (lines < declared && std::getline(in, line)) {
-      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-      ++lines;
-      std::istringstream words(line);
-      for (std::string token; words >> token;) check_coordinate(token, file, "PLY element line " + std::to_string(lines));
+    // One line per element, holding exactly its properties' values (a list: its count, then that many items).
+    std::vector<std::string> tokens;
+    for (const Element& element : elements) {
+      for (long long row = 0; row < element.count; ++row) {
+        const std::string where = "PLY " + element.name + " " + std::to_string(row);
+        if (!next_tokens(in, tokens))
+          throw MeshError(file, "PLY body ends at " + element.name + " " + std::to_string(row) + " of " +
+                                    std::to_string(element.count) + " declared (truncated file or wrong count)");
+        std::size_t needed = 0;
+        for (const bool list : element.is_list) {
+          if (list && needed < tokens.size()) {
+            const long long items = whole_number(tokens[needed]);
+            if (items < 0) throw MeshError(file, where + ": list length '" + tokens[needed] + "' is not a whole number");
+            needed += static_cast<std::size_t>(std::min<long long>(items, 1LL << 40));
+          }
+          ++needed;
+        }
+        if (tokens.size() != needed)
+          throw MeshError(file, where + " has " + std::to_string(tokens.size()) + " values, its properties need " +
+                                    std::to_string(needed) + " (malformed line, or a truncated file or wrong count)");
+        for (const std::string& token : tokens) check_coordinate(token, file, where);
+      }
     }
-    if (lines < declared)
-      throw MeshError(file, "PLY body holds " + std::to_string(lines) + " element lines, its header declares " +
-                                std::to_string(declared) + " (truncated file or wrong count)");
     return;
   }
   const std::streamoff body_start = in.tellg();

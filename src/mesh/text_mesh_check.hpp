@@ -14,9 +14,10 @@ namespace clothcd::detail {
 void check_off_body(const std::filesystem::path& path);
 
 /// For a PLY file: throws MeshError when an element count is not a whole number, a property type is unknown, an ASCII
-/// body holds fewer lines than the elements its header declares (one line per element) or a number of 20 or more
-/// integer digits, or a binary body is shorter than the header allows (assimp's binary reader allocates the declared
-/// count first: 2e9 vertices in a 300-byte file took gigabytes). Other files pass.
+/// body holds fewer lines than the elements its header declares (one line per element), a line whose values do not
+/// match its element's properties (a face declaring 255 indices and giving 3 lost the faces after it) or a number of
+/// 20 or more integer digits, or a binary body is shorter than the header allows (assimp's binary reader allocates the
+/// declared count first: 2e9 vertices in a 300-byte file took gigabytes). Other files pass.
 void check_ply_body(const std::filesystem::path& path);
 
 /// For an OBJ file: throws MeshError naming the file and vertex when a vertex coordinate has 20 or more integer digits

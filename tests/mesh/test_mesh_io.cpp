@@ -188,6 +188,14 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
     require_load_error(write_file(dir / "huge.ply", ply_header(4000000000, 1) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
                        "truncated");
   }
+  SECTION("an ASCII PLY line whose values do not match its element's properties") {
+    const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+    require_load_error(write_file(dir / "long_face.ply", ply_header(4, 2) + vertices + "255 0 1 2\n3 0 1 3\n"),
+                       "PLY face 0 has 4 values, its properties need 256");
+    require_load_error(write_file(dir / "short_vertex.ply", ply_header(4, 2) + "0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n"),
+                       "PLY vertex 0 has 2 values");
+    CHECK(load_mesh(write_file(dir / "good.ply", ply_header(4, 2) + vertices + "3 0 1 2\n3 0 1 3\n")).face_count() == 2);
+  }
   SECTION("a binary PLY body shorter than its header (a huge count would be allocated first)") {
     const auto binary = [](long long vertices) {
       std::string text = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertices) +
