@@ -28,19 +28,23 @@ namespace clothcd::geometry {
 namespace {
 
 // Loops the compiler vectorises, several times faster than Eigen's allFinite and minCoeff/maxCoeff here (which would
-// otherwise be a large part of a covariance box's time): x * 0 is NaN exactly when x is not finite, and NaN survives
-// every sum (four partial sums, so that they need no reordering to run in parallel).
-void check_input(const TriangleMesh& mesh, const char* where) {
+// otherwise be a large part of a covariance box's time). One sum of squares (four partial sums, so that they need no
+// reordering to run in parallel) answers both questions: it is NaN when a coordinate is NaN, and it is far from 1 (or
+// infinite) only when a coordinate is above 2^100, infinite, or all are below 2^-100; only then does a second pass
+// look at the coordinates themselves. Returns the power-of-two scale exponent the methods need
+// (detail::far_scale_exponent).
+int check_input(const TriangleMesh& mesh, const char* where) {
   if (mesh.vertex_count() == 0) throw std::invalid_argument(std::string(where) + ": the mesh has no vertices");
   const double* const x = mesh.vertices.data();
   const Eigen::Index count = mesh.vertices.size();
-  double zero[4] = {0, 0, 0, 0};
+  double squares[4] = {0, 0, 0, 0};
   Eigen::Index i = 0;
   for (; i + 4 <= count; i += 4)
-    for (int k = 0; k < 4; ++k) zero[k] += x[i + k] * 0.0;
-  for (; i < count; ++i) zero[0] += x[i] * 0.0;
-  if (!(zero[0] + zero[1] + zero[2] + zero[3] == 0.0))
-    throw std::invalid_argument(std::string(where) + ": non-finite coordinate");
+    for (int k = 0; k < 4; ++k) squares[k] += x[i + k] * x[i + k];
+  for (; i < count; ++i) squares[0] += x[i] * x[i];
+  const double sum = (squares[0] + squares[1]) + (squares[2] + squares[3]);
+  const bool far = !(sum <= 0x1p200 && sum >= 0x1p-200);  // also NaN and infinity
+  if (far && !mesh.vertices.allFinite()) throw std::invalid_argument(std::string(where) + ": non-finite coordinate");
   const int* const corner = mesh.faces.data();
   int lowest = 0, highest = 0;
   for (Eigen::Index j = 0; j < mesh.faces.size(); ++j) {
@@ -49,6 +53,7 @@ void check_input(const TriangleMesh& mesh, const char* where) {
   }
   if (lowest < 0 || highest >= mesh.vertex_count())
     throw std::invalid_argument(std::string(where) + ": face index out of range");
+  return far ? detail::far_scale_exponent(mesh.vertices) : 0;
 }
 
 // Orthonormal, right-handed eigenvectors of a symmetric covariance; identity when the solver returns garbage.
@@ -415,10 +420,9 @@ void grow_obb(Obb& box, const Vertices& points) {
 }
 
 Obb compute_obb(const TriangleMesh& mesh, ObbMethod method, const ObbSettings& settings) {
-  check_input(mesh, "compute_obb");
   // The methods multiply coordinates (covariances, areas, volumes): far from magnitude 1 they run on the mesh scaled by
   // a power of two.
-  if (const int exponent = detail::far_scale_exponent(mesh.vertices)) {
+  if (const int exponent = check_input(mesh, "compute_obb")) {
     TriangleMesh scaled = mesh;
     scaled.vertices *= std::ldexp(1.0, -exponent);
     Obb box = compute_obb(scaled, method, settings);
@@ -446,7 +450,7 @@ Obb compute_obb(const TriangleMesh& mesh, ObbMethod method, const ObbSettings& s
 }
 
 SimplifiedObb::SimplifiedObb(const TriangleMesh& original, const ObbSettings& settings) : settings_(settings) {
-  check_input(original, "SimplifiedObb");
+  (void)check_input(original, "SimplifiedObb");
   if (original.face_count() > 0) {
     SimplifySettings simplify;
     simplify.target_ratio = settings.simplify_ratio;
