@@ -270,7 +270,8 @@ struct CollisionDetector::Impl {
     if (network) {
       queries.resize(total);
       for_each_index(total, settings.parallel, [&](std::size_t i) { gather(start, end, i, queries[i]); });
-      const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep);
+      const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep,
+                                                  ccd::ProjectionFilterOptions{settings.projection_normals});
       stats.network_dropped = n.dropped;
       stats.network_overruled = n.overruled;
       stats.network_kept = n.kept;

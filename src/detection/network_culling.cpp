@@ -50,7 +50,8 @@ NetworkCuller::NetworkCuller(const std::string& model)
     : classifier_(learning::PairClassifier::load(model.empty() ? default_network_model_dir() : model, features_)) {}
 
 NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& queries, const ccd::CcdSettings& settings,
-                                        bool parallel, std::vector<std::uint8_t>& keep) {
+                                        bool parallel, std::vector<std::uint8_t>& keep,
+                                        const ccd::ProjectionFilterOptions& projection) {
   using learning::PairDecision;
   NetworkCullingStats stats;
   const std::size_t total = queries.size();
@@ -80,7 +81,8 @@ NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& querie
         ++n_kept;
         continue;
       }
-      const bool culled = ccd::combined_filters_cull(queries[i], settings);
+      const bool culled = ccd::nonpenetration_filter_culls(queries[i], settings) ||
+                          ccd::projection_filter_culls(queries[i], settings, projection);
       keep[i] = culled ? 0 : 1;
       if (decisions_[i] == PairDecision::Drop) {
         n_dropped += culled ? 1 : 0;

@@ -139,6 +139,21 @@ TEST_CASE("the network only culls what the combined filters cull, even told to d
       CHECK_FALSE(ccd::combined_filters_cull(queries[i], settings));
     }
   }
+
+  // Confirming with the primitives' normals as well (the detector's default) culls exactly the pairs that filter
+  // culls among those the network does not keep, and still no colliding pair.
+  const ccd::ProjectionFilterOptions normals{true};
+  culler.set_operating_point({1.0, 1.0});
+  culler.cull(queries, settings, false, keep, normals);
+  long more = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const bool with_normals = ccd::nonpenetration_filter_culls(queries[i], settings) ||
+                              ccd::projection_filter_culls(queries[i], settings, normals);
+    const bool kept = culler.decisions()[i] == learning::PairDecision::Keep;
+    CHECK(keep[i] == (kept || !with_normals ? 1 : 0));
+    more += with_normals && !ccd::combined_filters_cull(queries[i], settings) && !kept;
+  }
+  CHECK(more > 0);  // the normals do add culls here
 }
 
 TEST_CASE("network culling rejects missing and bad models", "[detection][network][errors]") {

@@ -21,7 +21,8 @@ enum class CullingMode {
   Projection,      ///< The spatial linear projection filter.
   Filters,         ///< Both filters, cheaper first.
   /// The learned pair network (see detection/network_culling.hpp): Keep goes to the exact CCD, Check and Drop through
-  /// the combined filters; a Drop the filters do not confirm goes to the exact CCD. Culls a subset of Filters.
+  /// the combined filters as Filters runs them (projection_normals included); a Drop the filters do not confirm goes
+  /// to the exact CCD. Culls a subset of Filters.
   Network,
 };
 

@@ -40,9 +40,11 @@ class NetworkCuller {
   explicit NetworkCuller(const std::string& model = {});
 
   /// Sets keep[i] = 1 when queries[i] must go to the exact CCD, 0 when culled (keep is resized to queries.size()).
-  /// Uses TBB threads when `parallel`; the result does not depend on it. No allocation once the buffers have grown.
+  /// The combined filters that confirm drops use `projection` (default: the paper's five directions only; the
+  /// detector passes its own choice). Uses TBB threads when `parallel`; the result does not depend on it. No allocation
+  /// once the buffers have grown.
   NetworkCullingStats cull(const std::vector<ccd::CcdQuery>& queries, const ccd::CcdSettings& settings, bool parallel,
-                           std::vector<std::uint8_t>& keep);
+                           std::vector<std::uint8_t>& keep, const ccd::ProjectionFilterOptions& projection = {});
 
   /// The model's decision per query of the last cull call (same order as the queries).
   [[nodiscard]] const std::vector<learning::PairDecision>& decisions() const { return decisions_; }
