@@ -227,8 +227,9 @@ SectionReport run_detection(const BenchContext& context) {
         "response), thickness " + number(kThickness, 3) + " m, obstacle and self collisions, VF and EE. AABB, AABB-OBB "
         "and the root-node double box (sphere root over AABBs) run the combined filters before the exact CCD, with the "
         "detector's default projection directions (the paper's five plus the primitives' normals); "
-        "*network* is the double box with `CullingMode::Network` (the pair network, its drops confirmed by the "
-        "paper's filters, so it culls fewer pairs). Times are means per step in ms; the paper's are seconds on its own machine, so compare the ratios "
+        "*network* is the double box with `CullingMode::Network` (the pair network; the same filters confirm its "
+        "drops, so it culls at most what they cull). Times are means per step in ms; the paper's are seconds on its own "
+        "machine, so compare the ratios "
         "to AABB.";
   if (!network) md += " **No pair network was found: the network rows are missing.**";
   if (context.quick) md += " Quick run: cloth A for Table 5 and cloths A, B for Table 7, fewer frames.";
@@ -250,8 +251,8 @@ SectionReport run_detection(const BenchContext& context) {
     }
     md += " The network's culling stage (features, inference and the combined filters that confirm its drops) takes " +
           number(culling / filters, 3) +
-          "x the time of the combined filters alone and culls fewer pairs (the safety rule lets it cull only what "
-          "the paper's filters cull, and the detector's filters add the normals), so it cannot save time here.";
+          "x the time of the combined filters alone and culls at most what they cull (the safety rule), so it cannot "
+          "save time here.";
   }
   md += "\n\n";
   md += "![Detection time per model](detection_models.png)\n\n"
