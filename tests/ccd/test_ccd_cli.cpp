@@ -46,6 +46,13 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
   REQUIRE(json.exit_code == 0);
   CHECK_THAT(json.output,
              Catch::StartsWith("{") && Catch::Contains("\"queries\": 2") && Catch::Contains("\"false_negatives\": 0"));
+
+  // A path with a quote and a backslash stays valid JSON.
+  std::filesystem::create_directories(dir / "we\"ird\\name/vertex-face");
+  write_file(dir / "we\"ird\\name/vertex-face/a.csv", vertex_face_query("1,2", 1));
+  const auto escaped = run_cli("ccd '" + (dir / "we\"ird\\name").string() + "' --json");
+  REQUIRE(escaped.exit_code == 0);
+  CHECK_THAT(escaped.output, Catch::Contains("we\\\"ird\\\\name\", \"filter\""));
 }
 
 TEST_CASE("clothcd ccd decides queries with non-double coordinates on their exact values", "[ccd][cli]") {
