@@ -1,7 +1,7 @@
-// Reader of the CCD benchmark's rational CSV query files (Wang et al. 2021). Most coordinates are doubles written as
-// n / 2^k with |n| < 2^53: those are read with 64-bit integers and converted exactly. The others (integers beyond 64
-// bits, other denominators) are parsed with GMP and rounded to the nearest double by comparing the neighbours of GMP's
-// truncated value.
+// Reader of the CCD benchmark's rational CSV query files (Wang et al. 2021), one query at a time. Most coordinates are
+// doubles written as n / 2^k with |n| < 2^53: those are read with 64-bit integers and converted exactly. The others
+// (integers beyond 64 bits, other denominators) are parsed with GMP and rounded to the nearest double by comparing the
+// neighbours of GMP's truncated value.
 #include "clothcd/ccd/query_file.hpp"
 
 #include <gmpxx.h>
@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string_view>
 
 namespace clothcd::ccd {
 
@@ -20,34 +21,38 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string trim(const std::string& text) {
+std::string_view trim(std::string_view text) {
   const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return {};
+  if (first == std::string_view::npos) return {};
   const auto last = text.find_last_not_of(" \t\r");
   return text.substr(first, last - first + 1);
 }
 
-std::vector<std::string> split_columns(const std::string& line) {
-  std::vector<std::string> columns;
-  std::size_t begin = 0;
-  for (;;) {
+// The comma-separated, trimmed columns of `line` into `columns` (the first kMaxColumns of them); returns how many there
+// are in all.
+constexpr int kMaxColumns = 7;
+int split_columns(std::string_view line, std::array<std::string_view, kMaxColumns>& columns) {
+  int count = 0;
+  for (std::size_t begin = 0;;) {
     const std::size_t comma = line.find(',', begin);
-    columns.push_back(trim(line.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin)));
-    if (comma == std::string::npos) return columns;
+    const std::string_view column = trim(line.substr(begin, comma == std::string_view::npos ? line.npos : comma - begin));
+    if (count < kMaxColumns) columns[count] = column;
+    ++count;
+    if (comma == std::string_view::npos) return count;
     begin = comma + 1;
   }
 }
 
-bool is_integer(const std::string& text) {
+bool is_integer(std::string_view text) {
   const std::size_t digits_start = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
   if (text.size() <= digits_start) return false;
-  return std::all_of(text.begin() + static_cast<std::ptrdiff_t>(digits_start), text.end(),
-                     [](char c) { return c >= '0' && c <= '9'; });
+  return std::all_of(text.begin() + digits_start, text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-mpz_class parse_integer(const std::string& text) {
-  return mpz_class(text[0] == '+' ? text.substr(1) : text, 10);
-}
+// The integer text without a leading '+' (checked by is_integer).
+std::string_view unsigned_plus(std::string_view text) { return text[0] == '+' ? text.substr(1) : text; }
+
+mpz_class parse_integer(std::string_view text) { return mpz_class(std::string(unsigned_plus(text)), 10); }
 
 double nearest_double(const mpq_class& q) {
   const double truncated = q.get_d();
@@ -66,12 +71,12 @@ double nearest_double(const mpq_class& q) {
 }
 
 // The integer in `text` (checked by is_integer) if it fits in 62 bits.
-std::optional<std::int64_t> small_integer(const std::string& text) {
-  const char* begin = text.data() + (text[0] == '+' ? 1 : 0);
-  const char* end = text.data() + text.size();
+std::optional<std::int64_t> small_integer(std::string_view text) {
+  text = unsigned_plus(text);
   std::int64_t value = 0;
-  const auto [rest, error] = std::from_chars(begin, end, value);
-  if (error != std::errc() || rest != end || value > (std::int64_t{1} << 62) || value < -(std::int64_t{1} << 62))
+  const auto [rest, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || rest != text.data() + text.size() || value > (std::int64_t{1} << 62) ||
+      value < -(std::int64_t{1} << 62))
     return std::nullopt;
   return value;
 }
@@ -89,74 +94,31 @@ std::optional<double> exact_dyadic(std::int64_t numerator, std::int64_t denomina
   return denominator < 0 ? -value : value;
 }
 
-struct Row {
-  std::array<RationalText, 3> text;
-  Eigen::Vector3d value;
-  bool exact = true;
-  int truth = -1;
-  std::size_t line = 0;
-};
-
-Row parse_row(const std::string& file, std::size_t line_number, const std::string& line) {
-  const std::vector<std::string> columns = split_columns(line);
-  if (columns.size() != 6 && columns.size() != 7)
-    throw QueryFileError(
-        file, line_number,
-        "expected 6 or 7 comma-separated integers, found " + std::to_string(columns.size()) + " columns");
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    if (!is_integer(columns[c]))
-      throw QueryFileError(file, line_number,
-                           "column " + std::to_string(c + 1) + " is not an integer: '" + columns[c] + "'");
-  Row row;
-  row.line = line_number;
-  for (int d = 0; d < 3; ++d) {
-    const std::optional<std::int64_t> small_numerator = small_integer(columns[2 * d]);
-    const std::optional<std::int64_t> small_denominator = small_integer(columns[2 * d + 1]);
-    if (small_numerator && small_denominator) {
-      if (const std::optional<double> value = exact_dyadic(*small_numerator, *small_denominator)) {
-        row.text[d] = {std::to_string(*small_numerator), std::to_string(*small_denominator)};
-        row.value[d] = *value;
-        continue;
-      }
+// One coordinate from its numerator and denominator columns (integers): its text into `text`, its nearest double into
+// `value`; returns whether that double is exact. `column` (1-based, of the numerator) is for messages.
+bool parse_coordinate(const QueryFileError::Place& place, std::string_view numerator_text,
+                      std::string_view denominator_text, int column, RationalText& text, double& value) {
+  text[0].assign(unsigned_plus(numerator_text));
+  text[1].assign(unsigned_plus(denominator_text));
+  const std::optional<std::int64_t> small_numerator = small_integer(numerator_text);
+  const std::optional<std::int64_t> small_denominator = small_integer(denominator_text);
+  if (small_numerator && small_denominator) {
+    if (const std::optional<double> dyadic = exact_dyadic(*small_numerator, *small_denominator)) {
+      value = *dyadic;
+      return true;
     }
-    const mpz_class numerator = parse_integer(columns[2 * d]);
-    const mpz_class denominator = parse_integer(columns[2 * d + 1]);
-    if (denominator == 0)
-      throw QueryFileError(file, line_number, "zero denominator in column " + std::to_string(2 * d + 2));
-    mpq_class q(numerator, denominator);
-    q.canonicalize();
-    if (abs(q) > mpq_class(std::numeric_limits<double>::max()))
-      throw QueryFileError(file, line_number,
-                           "the coordinate in columns " + std::to_string(2 * d + 1) + "-" + std::to_string(2 * d + 2) +
-                               " is beyond the range of doubles (magnitude above 1.8e308)");
-    row.text[d] = {numerator.get_str(), denominator.get_str()};
-    row.value[d] = nearest_double(q);
-    row.exact = row.exact && mpq_class(row.value[d]) == q;
   }
-  if (columns.size() == 7) {
-    if (columns[6] != "0" && columns[6] != "1")
-      throw QueryFileError(file, line_number, "ground truth (column 7) must be 0 or 1, got '" + columns[6] + "'");
-    row.truth = columns[6] == "1" ? 1 : 0;
-  }
-  return row;
-}
-
-QueryRecord make_record(const std::string& file, PairKind kind, const std::vector<Row>& rows, std::size_t first) {
-  QueryRecord record;
-  record.query.kind = kind;
-  record.file = file;
-  record.line = rows[first].line;
-  record.truth = rows[first].truth;
-  for (std::size_t i = 0; i < 8; ++i) {
-    const Row& row = rows[first + i];
-    if (row.truth != record.truth)
-      throw QueryFileError(
-          file, row.line, "ground truth differs from the query's first row (line " + std::to_string(record.line) + ")");
-    record.rational[i] = row.text;
-    record.exactly_representable = record.exactly_representable && row.exact;
-    (i < 4 ? record.query.start[i] : record.query.end[i - 4]) = row.value;
-  }
-  return record;
+  const mpz_class numerator = parse_integer(numerator_text);
+  const mpz_class denominator = parse_integer(denominator_text);
+  if (denominator == 0) throw QueryFileError(place, "zero denominator in column " + std::to_string(column + 1));
+  mpq_class q(numerator, denominator);
+  q.canonicalize();
+  if (abs(q) > mpq_class(std::numeric_limits<double>::max()))
+    throw QueryFileError(place, "the coordinate in columns " + std::to_string(column) + "-" +
+                                    std::to_string(column + 1) +
+                                    " is beyond the range of doubles (magnitude above 1.8e308)");
+  value = nearest_double(q);
+  return mpq_class(value) == q;
 }
 
 }  // namespace
@@ -171,25 +133,69 @@ std::optional<PairKind> pair_kind_from_path(const std::string& path) {
   return kind;
 }
 
-std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind) {
+QueryFileReader::QueryFileReader(const std::string& path, std::optional<PairKind> kind) : path_(path) {
   if (!kind) kind = pair_kind_from_path(path);
   if (!kind)
     throw QueryFileError(path, 0,
                          "pair type unknown: pass --type vf|ee or put the file under a vertex-face or edge-edge "
                          "folder");
-  std::ifstream in(path);
-  if (!in) throw QueryFileError(path, 0, "cannot open file");
-  std::vector<Row> rows;
-  std::string line;
-  for (std::size_t line_number = 1; std::getline(in, line); ++line_number) {
-    if (trim(line).empty()) continue;
-    rows.push_back(parse_row(path, line_number, line));
+  kind_ = *kind;
+  in_.open(path);
+  if (!in_) throw QueryFileError(path, 0, "cannot open file");
+}
+
+bool QueryFileReader::next(QueryRecord& record) {
+  record.query.kind = kind_;
+  record.exactly_representable = true;
+  int row = 0;
+  std::array<std::string_view, kMaxColumns> columns;
+  while (row < 8 && std::getline(in_, line_)) {
+    ++line_number_;
+    const std::string_view line = trim(line_);
+    if (line.empty()) continue;
+    const QueryFileError::Place place{path_, line_number_};
+    const int count = split_columns(line, columns);
+    if (count != 6 && count != 7)
+      throw QueryFileError(place, "expected 6 or 7 comma-separated integers, found " + std::to_string(count) +
+                                      " columns");
+    for (int c = 0; c < count; ++c)
+      if (!is_integer(columns[c]))
+        throw QueryFileError(place, "column " + std::to_string(c + 1) + " is not an integer: '" +
+                                        std::string(columns[c]) + "'");
+    Eigen::Vector3d& point = row < 4 ? record.query.start[row] : record.query.end[row - 4];
+    for (int d = 0; d < 3; ++d) {
+      const bool exact =
+          parse_coordinate(place, columns[2 * d], columns[2 * d + 1], 2 * d + 1, record.rational[row][d], point[d]);
+      record.exactly_representable = record.exactly_representable && exact;
+    }
+    int truth = -1;
+    if (count == 7) {
+      if (columns[6] != "0" && columns[6] != "1")
+        throw QueryFileError(place, "ground truth (column 7) must be 0 or 1, got '" + std::string(columns[6]) + "'");
+      truth = columns[6] == "1" ? 1 : 0;
+    }
+    if (row == 0) {
+      record.line = line_number_;
+      record.truth = truth;
+    } else if (truth != record.truth) {
+      throw QueryFileError(place,
+                           "ground truth differs from the query's first row (line " + std::to_string(record.line) + ")");
+    }
+    ++row;
+    ++rows_;
   }
-  if (rows.size() % 8 != 0)
-    throw QueryFileError(path, 0, std::to_string(rows.size()) + " rows is not a multiple of 8 (8 rows per query)");
+  if (row == 0) return false;
+  if (row < 8)
+    throw QueryFileError(path_, 0, std::to_string(rows_) + " rows is not a multiple of 8 (8 rows per query)");
+  record.file = path_;
+  return true;
+}
+
+std::vector<QueryRecord> read_query_file(const std::string& path, std::optional<PairKind> kind) {
+  QueryFileReader reader(path, kind);
   std::vector<QueryRecord> records;
-  records.reserve(rows.size() / 8);
-  for (std::size_t first = 0; first < rows.size(); first += 8) records.push_back(make_record(path, *kind, rows, first));
+  QueryRecord record;
+  while (reader.next(record)) records.push_back(record);
   return records;
 }
 

@@ -88,3 +88,28 @@ TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cl
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness -1").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "missing").string() + "'").exit_code == 1);
 }
+
+TEST_CASE("clothcd ccd reads a file larger than one chunk whole", "[ccd][cli]") {
+  // 9,001 queries (more than two of the command's 4,096-query chunks): every third collides.
+  TempDir dir;
+  std::filesystem::create_directories(dir / "vertex-face");
+  std::string text;
+  const int queries = 9001;
+  for (int k = 0; k < queries; ++k) text += k % 3 == 0 ? vertex_face_query("-1,1", 1) : vertex_face_query("1,2", 0);
+  write_file(dir / "vertex-face/many.csv", text);
+  const auto run = run_cli("ccd '" + dir.path().string() + "' --per-query '" + (dir / "out.csv").string() + "'");
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(run.output, Catch::Contains("queries:               9001"));
+  CHECK_THAT(run.output, Catch::Contains("colliding:             3001"));
+  CHECK_THAT(run.output, Catch::Contains("false positives:       0"));
+  CHECK_THAT(run.output, Catch::Contains("false negatives:       0"));
+  std::ifstream per_query(dir / "out.csv");
+  std::string line, last;
+  int lines = 0;
+  while (std::getline(per_query, line)) {
+    ++lines;
+    last = line;
+  }
+  CHECK(lines == queries + 1);
+  CHECK_THAT(last, Catch::Contains("many.csv," + std::to_string(8 * (queries - 1) + 1) + ",vf,1,1,"));
+}

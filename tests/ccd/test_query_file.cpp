@@ -137,3 +137,41 @@ TEST_CASE("malformed query files are errors naming the file and line", "[ccd][qu
   write_file(dir / "plain.csv", kQuery);
   CHECK_THAT(error_of((dir / "plain.csv").string()), Catch::Contains("pair type unknown"));
 }
+
+TEST_CASE("the reader returns one query at a time and reuses the record", "[ccd][query-file]") {
+  TempDir dir;
+  // A query with a long big-integer coordinate, then one with short ones: nothing of the first may remain.
+  std::string text = "1267650600228229401496703205376,5070602400912917605986812821504,1,3,0,1,0\n";
+  for (int i = 1; i < 8; ++i) text += "0,1,0,1,0,1,0\n";
+  text += "\n";  // blank lines are skipped
+  text += kQuery;
+  const std::string path = write_file(dir / "q.csv", text).string();
+  ccd::QueryFileReader reader(path, PairKind::EdgeEdge);
+  ccd::QueryRecord record;
+  REQUIRE(reader.next(record));
+  CHECK(record.line == 1);
+  CHECK(record.truth == 0);
+  CHECK_FALSE(record.exactly_representable);
+  CHECK(record.rational[0][0] == ccd::RationalText{"1267650600228229401496703205376", "5070602400912917605986812821504"});
+  REQUIRE(reader.next(record));
+  CHECK(record.line == 10);
+  CHECK(record.truth == 1);
+  CHECK(record.exactly_representable);
+  CHECK(record.query.kind == PairKind::EdgeEdge);
+  CHECK(record.rational[0][0] == ccd::RationalText{"1", "4"});
+  CHECK(record.query.start[0] == Eigen::Vector3d(0.25, 0.25, 1));
+  CHECK(record.query.end[0] == Eigen::Vector3d(0.25, 0.25, -1));
+  CHECK(record.file == path);
+  CHECK_FALSE(reader.next(record));
+  CHECK_FALSE(reader.next(record));
+}
+
+TEST_CASE("the reader returns the complete queries before a file that ends inside one", "[ccd][query-file][errors]") {
+  TempDir dir;
+  const std::string path = write_file(dir / "q.csv", std::string(kQuery) + "1,1,1,1,1,1,1\n0,1,0,1,0,1,1\n").string();
+  ccd::QueryFileReader reader(path, PairKind::VertexFace);
+  ccd::QueryRecord record;
+  REQUIRE(reader.next(record));
+  CHECK(record.truth == 1);
+  CHECK_THROWS_WITH(reader.next(record), Catch::Contains("q.csv") && Catch::Contains("10 rows is not a multiple of 8"));
+}

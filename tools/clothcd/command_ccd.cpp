@@ -21,6 +21,9 @@ namespace clothcd::cli {
 
 namespace {
 
+// Queries read, filtered and decided at a time (a few megabytes of records).
+constexpr std::size_t kChunkQueries = 4096;
+
 struct CcdCommandOptions {
   std::string path;
   std::string type;
@@ -114,10 +117,11 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
 // rational reference; a hit the rounded query missed is reported with toi 0 as a conservative hit), otherwise with the
 // thickness grown by more than rounding can move the two primitives apart (each point by at most sqrt(3) * 2^-53 of
 // the largest coordinate magnitude). Returns how many were decided again.
+// Only the first results.size() records are looked at.
 std::size_t redecide_inexact(const std::vector<ccd::QueryRecord>& records, const ccd::CcdSettings& settings,
                              std::vector<std::uint8_t>& keep, std::vector<ccd::CcdResult>& results) {
   std::size_t redecided = 0;
-  for (std::size_t i = 0; i < records.size(); ++i) {
+  for (std::size_t i = 0; i < results.size(); ++i) {
     const ccd::QueryRecord& record = records[i];
     if (record.exactly_representable) continue;
     ++redecided;
@@ -157,12 +161,13 @@ void add_network_stats(const NetworkCullingStats& part, NetworkCullingStats& tot
   total.filters_ms += part.filters_ms;
 }
 
-// Adds one file's queries and answers to the summary (and their lines to the per-query file when open).
+// Adds the first results.size() queries of `records` and their answers to the summary (and their lines to the
+// per-query file when open).
 void add_to_summary(const std::vector<ccd::QueryRecord>& records, const std::vector<std::uint8_t>& keep,
                     const std::vector<ccd::CcdResult>& results, const ccd::CcdSettings& settings, Summary& summary,
                     std::ofstream& per_query) {
-  summary.queries += records.size();
-  for (std::size_t i = 0; i < records.size(); ++i) {
+  summary.queries += results.size();
+  for (std::size_t i = 0; i < results.size(); ++i) {
     const ccd::QueryRecord& record = records[i];
     const ccd::CcdResult& result = results[i];
     summary.colliding += result.hit ? 1 : 0;
@@ -223,24 +228,30 @@ void run_ccd(const CcdCommandOptions& options) {
   Summary summary;
   summary.network = network;
   double elapsed_ns = 0.0;
-  // One file at a time, so that memory stays that of the largest file however many files a folder holds.
+  // Chunks of kChunkQueries queries, so that memory stays small however large the files are (records are reused).
+  std::vector<ccd::QueryRecord> records(kChunkQueries);
+  std::vector<ccd::CcdQuery> queries;
+  std::vector<std::uint8_t> keep;
+  std::vector<ccd::CcdResult> results;
   for (const std::string& file : files) {
-    const std::vector<ccd::QueryRecord> records = ccd::read_query_file(file, kind);
-    std::vector<ccd::CcdQuery> queries;
-    queries.reserve(records.size());
-    for (const ccd::QueryRecord& record : records) queries.push_back(record.query);
-    std::vector<std::uint8_t> keep;
-    std::vector<ccd::CcdResult> results;
-    const auto begin = std::chrono::steady_clock::now();
-    if (culler)
-      add_network_stats(culler->cull(queries, settings, false, keep), summary.network_stats);
-    else
-      ccd::filter_batch(queries, filter, settings, keep);
-    ccd::continuous_collision_batch(queries, keep, settings, results);
-    summary.inexact_coordinates += redecide_inexact(records, settings, keep, results);
-    elapsed_ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count();
-    add_to_summary(records, keep, results, settings, summary, per_query);
-    if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
+    ccd::QueryFileReader reader(file, kind);
+    for (bool more = true; more;) {
+      std::size_t count = 0;
+      while (count < records.size() && reader.next(records[count])) ++count;
+      more = count == records.size();
+      queries.clear();
+      for (std::size_t i = 0; i < count; ++i) queries.push_back(records[i].query);
+      const auto begin = std::chrono::steady_clock::now();
+      if (culler)
+        add_network_stats(culler->cull(queries, settings, false, keep), summary.network_stats);
+      else
+        ccd::filter_batch(queries, filter, settings, keep);
+      ccd::continuous_collision_batch(queries, keep, settings, results);
+      summary.inexact_coordinates += redecide_inexact(records, settings, keep, results);
+      elapsed_ns += std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - begin).count();
+      add_to_summary(records, keep, results, settings, summary, per_query);
+      if (per_query.is_open() && !per_query) throw std::runtime_error(options.per_query + ": write failed");
+    }
   }
   // An empty file or a folder of empty files is most likely a wrong path or a failed export: say so.
   if (summary.queries == 0) throw std::runtime_error(options.path + ": no queries (empty query files)");

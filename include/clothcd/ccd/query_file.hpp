@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -19,12 +20,22 @@ namespace clothcd::ccd {
 /// Thrown for unreadable or malformed query files; what() is "<file>:<line>: <problem>" (or "<file>: <problem>").
 class QueryFileError : public std::runtime_error {
  public:
+  /// Where a problem is: a file and a 1-based line (0 = no line).
+  struct Place {
+    const std::string& file;  ///< The file.
+    std::size_t line;         ///< The line, or 0.
+  };
+
   /// Builds the message from the file, the 1-based line (0 = no line) and the problem.
   QueryFileError(const std::string& file, std::size_t line, const std::string& problem)
       : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + problem) {}
+
+  /// Builds the message from the place and the problem.
+  QueryFileError(const Place& place, const std::string& problem) : QueryFileError(place.file, place.line, problem) {}
 };
 
-/// One coordinate as read: decimal integer strings, denominator non-zero (as in the file; not reduced).
+/// One coordinate as read: decimal integer strings as in the file (a leading '+' dropped; not reduced), the
+/// denominator non-zero.
 using RationalText = std::array<std::string, 2>;
 
 /// One query as read from a file.
@@ -40,6 +51,27 @@ struct QueryRecord {
 
 /// The pair kind named by a `vertex-face` or `edge-edge` folder in path (the nearest one wins), if any.
 [[nodiscard]] std::optional<PairKind> pair_kind_from_path(const std::string& path);
+
+/// Reads one query file a query at a time, so that memory does not grow with the file (the public benchmark's
+/// simulation sets hold files of millions of queries). Checks as read_query_file.
+class QueryFileReader {
+ public:
+  /// Opens `path`. kind: the pair kind, or nullopt to take it from the path. Throws QueryFileError when the file
+  /// cannot be opened or the kind is unknown.
+  explicit QueryFileReader(const std::string& path, std::optional<PairKind> kind = {});
+
+  /// Reads the next query into `record` (its storage is reused); false at the end of the file. Throws QueryFileError
+  /// on malformed input, including a file that ends inside a query.
+  bool next(QueryRecord& record);
+
+ private:
+  std::string path_;
+  PairKind kind_ = PairKind::VertexFace;
+  std::ifstream in_;
+  std::string line_;
+  std::size_t line_number_ = 0;
+  std::size_t rows_ = 0;
+};
 
 /// Reads one CSV file. kind: the pair kind, or nullopt to take it from the path (QueryFileError when it cannot).
 /// Throws QueryFileError on unreadable files, wrong column counts, non-integers, zero denominators, a ground truth
