@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,16 +32,28 @@ namespace {
 
 constexpr double kThickness = 0.004;  // the simulator's response thickness, also its detector's
 
-// The smallest over `passes` passes of the mean over `frames` of the time `work` reports for one frame (ms).
-double best_mean_ms(int passes, const std::vector<Frame>& frames, const std::function<double(const Frame&)>& work) {
-  double best = 0;
+// One pass of a measure over its frames, returning the mean time per frame (ms).
+using Pass = std::function<double()>;
+
+// The best (smallest) pass time of each measure over `passes` rounds, each round running one pass of every measure in
+// turn: a change of the machine's speed during the run then affects every measure alike, not only the ones that
+// happen to run while it lasts.
+std::vector<double> interleaved_best(int passes, const std::vector<Pass>& measures) {
+  std::vector<double> best(measures.size(), 0.0);
   for (int pass = 0; pass < passes; ++pass) {
-    double total = 0;
-    for (const Frame& frame : frames) total += work(frame);
-    const double mean = total / static_cast<double>(frames.size());
-    if (pass == 0 || mean < best) best = mean;
+    for (std::size_t m = 0; m < measures.size(); ++m) {
+      const double mean = measures[m]();
+      if (pass == 0 || mean < best[m]) best[m] = mean;
+    }
   }
   return best;
+}
+
+// The mean over `frames` of the time `work` reports for one frame (ms).
+double mean_ms(const std::vector<Frame>& frames, const std::function<double(const Frame&)>& work) {
+  double total = 0;
+  for (const Frame& frame : frames) total += work(frame);
+  return total / static_cast<double>(frames.size());
 }
 
 DetectorSettings single_thread_detector(HierarchyKind hierarchy, bool self_collision) {
@@ -52,56 +65,69 @@ DetectorSettings single_thread_detector(HierarchyKind hierarchy, bool self_colli
   return settings;
 }
 
-// A detector's stage times per frame: refit + search (`broad_only`) or the whole detect() call.
-double detector_ms(const DrapedCase& c, HierarchyKind hierarchy, bool self_collision, bool broad_only, int passes,
+// A detector's pass over the frames: refit + search per frame (`broad_only`) or the whole detect() call. With
+// `candidates`, each pass stores there the mean candidate pairs per frame.
+Pass detector_pass(const DrapedCase& c, HierarchyKind hierarchy, bool self_collision, bool broad_only,
                    double* candidates = nullptr) {
-  CollisionDetector detector(c.cloth_rest.faces, static_cast<int>(c.cloth_rest.vertex_count()),
-                             single_thread_detector(hierarchy, self_collision));
-  if (c.obstacle.face_count() > 0) detector.add_obstacle(c.obstacle);
-  detector.detect(c.frames.front().start, c.frames.front().start);  // builds the hierarchies
-  double found = 0;
-  const double ms = best_mean_ms(passes, c.frames, [&](const Frame& frame) {
-    const double whole = time_ms([&] { detector.detect(frame.start, frame.end); });
-    const DetectionStats& s = detector.stats();
-    found += static_cast<double>(s.candidates_vertex_face + s.candidates_edge_edge);
-    return broad_only ? s.refit_ms + s.traversal_ms : whole;
-  });
-  if (candidates != nullptr) *candidates = found / static_cast<double>(passes * c.frames.size());
-  return ms;
+  auto detector = std::make_shared<CollisionDetector>(
+      c.cloth_rest.faces, static_cast<int>(c.cloth_rest.vertex_count()), single_thread_detector(hierarchy, self_collision));
+  if (c.obstacle.face_count() > 0) detector->add_obstacle(c.obstacle);
+  detector->detect(c.frames.front().start, c.frames.front().start);  // builds the hierarchies
+  return [&c, detector, broad_only, candidates] {
+    double found = 0;
+    const double ms = mean_ms(c.frames, [&](const Frame& frame) {
+      const double whole = time_ms([&] { detector->detect(frame.start, frame.end); });
+      const DetectionStats& s = detector->stats();
+      found += static_cast<double>(s.candidates_vertex_face + s.candidates_edge_edge);
+      return broad_only ? s.refit_ms + s.traversal_ms : whole;
+    });
+    if (candidates != nullptr) *candidates = found / static_cast<double>(c.frames.size());
+    return ms;
+  };
 }
 
-// The cloth's self-collision candidate search alone (hierarchy refitted outside the timing), ms per frame.
-double self_search_ms(const DrapedCase& c, broadphase::VolumeKind volume, int passes, double* candidates) {
-  const broadphase::BodyTopology topology =
-      broadphase::build_body_topology(c.cloth_rest.faces, static_cast<int>(c.cloth_rest.vertex_count()));
-  broadphase::SweptBoxes boxes;
+// A pass of the cloth's self-collision candidate search alone (hierarchy refitted outside the timing); each pass
+// stores the mean candidate pairs per frame in `candidates`.
+Pass self_search_pass(const DrapedCase& c, broadphase::VolumeKind volume, double* candidates) {
+  struct State {
+    broadphase::BodyTopology topology;
+    broadphase::SweptBoxes boxes;
+    broadphase::Bvh bvh;
+    broadphase::CandidateSet found;
+  };
   broadphase::BvhSettings settings;
   settings.volume = volume;
   settings.max_leaf_faces = DetectorSettings{}.max_leaf_faces;
-  broadphase::Bvh bvh(settings);
-  broadphase::CandidateSet found;
-  double count = 0;
-  const double ms = best_mean_ms(passes, c.frames, [&](const Frame& frame) {
-    broadphase::compute_swept_boxes(topology, frame.start, frame.end, kThickness, boxes);
-    (void)bvh.update(topology, boxes, frame.start, frame.end);
-    const broadphase::BodyView view{0, &topology, &boxes, &bvh};
-    found.clear();
-    const double t = time_ms([&] { broadphase::find_self_candidates(view, {false, nullptr}, found); });
-    count += static_cast<double>(found.vertex_face.size() + found.edge_edge.size());
-    return t;
-  });
-  *candidates = count / static_cast<double>(passes * c.frames.size());
-  return ms;
+  auto state = std::make_shared<State>(State{
+      broadphase::build_body_topology(c.cloth_rest.faces, static_cast<int>(c.cloth_rest.vertex_count())), {},
+      broadphase::Bvh(settings), {}});
+  return [&c, state, candidates] {
+    double count = 0;
+    const double ms = mean_ms(c.frames, [&](const Frame& frame) {
+      broadphase::compute_swept_boxes(state->topology, frame.start, frame.end, kThickness, state->boxes);
+      (void)state->bvh.update(state->topology, state->boxes, frame.start, frame.end);
+      const broadphase::BodyView view{0, &state->topology, &state->boxes, &state->bvh};
+      state->found.clear();
+      const double t = time_ms([&] { broadphase::find_self_candidates(view, {false, nullptr}, state->found); });
+      count += static_cast<double>(state->found.vertex_face.size() + state->found.edge_edge.size());
+      return t;
+    });
+    *candidates = count / static_cast<double>(c.frames.size());
+    return ms;
+  };
 }
 
-// FCL refit of the cloth + collide against `other` (the obstacle, or the cloth itself for the naive self query).
-double fcl_ms(const DrapedCase& c, bool self, int passes) {
+// A pass of FCL: refit of the cloth + collide against the obstacle, or against the cloth itself for the naive self
+// query.
+Pass fcl_pass(const DrapedCase& c, bool self) {
   auto cloth = fcl_model(c.cloth_rest, c.frames.front().start);
   auto obstacle = self ? cloth : fcl_model(c.obstacle, c.obstacle.vertices);
-  return best_mean_ms(passes, c.frames, [&](const Frame& frame) {
-    const auto points = fcl_points(frame.end);
-    return time_ms([&] { (void)fcl_refit_and_collide(cloth, points, obstacle); });
-  });
+  return [&c, cloth, obstacle] {
+    return mean_ms(c.frames, [&](const Frame& frame) {
+      const auto points = fcl_points(frame.end);
+      return time_ms([&] { (void)fcl_refit_and_collide(cloth, points, obstacle); });
+    });
+  };
 }
 
 // A wavy square sheet of n x n vertices with unit edge length `edge`, moving down by half an edge over the step
@@ -129,7 +155,7 @@ std::string verdict(bool met) { return met ? "met" : "**missed**"; }
 SectionReport run_targets(const BenchContext& context) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
   const char cloth = context.quick ? 'A' : 'C';
-  const int steps = context.quick ? 40 : 200, frames = context.quick ? 5 : 30, passes = context.quick ? 1 : 3;
+  const int steps = context.quick ? 40 : 200, frames = context.quick ? 5 : 30, passes = context.quick ? 1 : 5;
   const std::string label = std::string("cloth ") + cloth + " on the human";
   context.progress(label + ": simulating " + std::to_string(steps) + " steps (one thread)");
   const DrapedCase c = simulate_draping("human", cloth, steps, frames, context.obstacle_model_dir.string());
@@ -143,24 +169,29 @@ SectionReport run_targets(const BenchContext& context) {
 
   context.progress(label + ": broad phase against FCL on " + std::to_string(frames) + " frames");
   double obstacle_candidates = 0, self_candidates = 0, all_candidates = 0;
-  const double fcl_obstacle = fcl_ms(c, false, passes);
-  const double ours_aabb = detector_ms(c, HierarchyKind::Aabb, false, true, passes, &obstacle_candidates);
-  const double ours_double = detector_ms(c, HierarchyKind::SphereRootAabb, false, true, passes);
-  const double fcl_self = fcl_ms(c, true, passes);
-  const double self_aabb = self_search_ms(c, broadphase::VolumeKind::Aabb, passes, &self_candidates);
+  const std::vector<double> broad = interleaved_best(
+      passes, {fcl_pass(c, false), detector_pass(c, HierarchyKind::Aabb, false, true, &obstacle_candidates),
+               detector_pass(c, HierarchyKind::SphereRootAabb, false, true)});
+  const double fcl_obstacle = broad[0], ours_aabb = broad[1], ours_double = broad[2];
+  const std::vector<double> self = interleaved_best(
+      passes, {fcl_pass(c, true), self_search_pass(c, broadphase::VolumeKind::Aabb, &self_candidates)});
+  const double fcl_self = self[0], self_aabb = self[1];
   context.progress(label + ": whole detection");
-  const double whole_aabb = detector_ms(c, HierarchyKind::Aabb, true, false, passes, &all_candidates);
-  const double whole_double = detector_ms(c, HierarchyKind::SphereRootAabb, true, false, passes);
+  const std::vector<double> whole =
+      interleaved_best(passes, {detector_pass(c, HierarchyKind::Aabb, true, false, &all_candidates),
+                                detector_pass(c, HierarchyKind::SphereRootAabb, true, false)});
+  const double whole_aabb = whole[0], whole_double = whole[1];
 
   const int small_n = context.quick ? 20 : 50, large_n = context.quick ? 60 : 225;
   context.progress("scaling: wavy sheets of " + std::to_string(small_n) + "^2 and " + std::to_string(large_n) +
                    "^2 vertices");
   const DrapedCase small_sheet = wavy_sheet(small_n, 0.01, context.quick ? 2 : 5);
   const DrapedCase large_sheet = wavy_sheet(large_n, 0.01, context.quick ? 2 : 5);
-  const double small_ms = detector_ms(small_sheet, HierarchyKind::SphereRootAabb, true, false, passes);
-  const double large_ms = detector_ms(large_sheet, HierarchyKind::SphereRootAabb, true, false, passes);
-  const double small_per = small_ms / static_cast<double>(small_sheet.cloth_rest.face_count());
-  const double large_per = large_ms / static_cast<double>(large_sheet.cloth_rest.face_count());
+  const std::vector<double> sheets =
+      interleaved_best(passes, {detector_pass(small_sheet, HierarchyKind::SphereRootAabb, true, false),
+                                detector_pass(large_sheet, HierarchyKind::SphereRootAabb, true, false)});
+  const double small_per = sheets[0] / static_cast<double>(small_sheet.cloth_rest.face_count());
+  const double large_per = sheets[1] / static_cast<double>(large_sheet.cloth_rest.face_count());
 
   CsvFile csv(context.out_dir / "targets.csv", "measure,ours_ms,peer_ms,ratio,target");
   const double broad_ratio = fcl_obstacle / ours_aabb;
@@ -205,7 +236,7 @@ SectionReport run_targets(const BenchContext& context) {
         std::string(1, cloth) + "` for " + std::to_string(steps) + " steps on one thread (its per-step statistics "
         "give the simulation rows), the last " + std::to_string(frames) + " steps replayed as frames (start, "
         "free-flight end; thickness " + number(kThickness, 3) + " m), best of " + std::to_string(passes) +
-        " passes of the mean per frame. FCL: its AABB BVH refitted to the frame's end positions and collided with "
+        " passes of the mean per frame, the passes of the measures compared with each other taken in turn. FCL: its AABB BVH refitted to the frame's end positions and collided with "
         "every contact (against the model, or against itself for the naive self query). Mean candidates per frame: "
         "cloth vs model " + number(obstacle_candidates, 4) + ", cloth self " + number(self_candidates, 4) +
         ", all " + number(all_candidates, 4) + ". Scaling: a wavy sheet with 1 cm edges (waves 12 edges long and "
