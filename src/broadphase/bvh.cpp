@@ -1,10 +1,12 @@
-// Bounding volume hierarchy over a body's triangles: top-down median split, bottom-up refit of AABB, sphere or OBB
-// nodes every step, and a rebuild when the refitted tree has grown too loose. Sphere nodes follow Jin et al.,
+// Bounding volume hierarchy over a body's triangles: top-down split by the binned surface-area heuristic (the median
+// on the longest axis when the centroids cannot be split), bottom-up refit of AABB, sphere or OBB nodes every step,
+// and a rebuild when the refitted tree has grown too loose. Sphere nodes follow Jin et al.,
 // section 3.2.1 (bounding spheres for non-root nodes); the root's second volume, its AABB, is built by the search only
 // when the root spheres overlap (traversal.cpp).
 #include "clothcd/broadphase/bvh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -48,25 +50,81 @@ geometry::Sphere merge_spheres(const geometry::Sphere& a, const geometry::Sphere
 struct BuildContext {
   std::vector<int>& order;
   const std::vector<Eigen::Vector3d>& centroids;
+  const std::vector<FlatBox>& face_boxes;
   std::vector<BvhNode>& nodes;
   int max_leaf;
 };
 
-int build_range(BuildContext& context, int begin, int end) {
-  const int index = static_cast<int>(context.nodes.size());
-  context.nodes.push_back(BvhNode{-1, begin, end});
-  if (end - begin <= context.max_leaf) return index;
+constexpr int kSahBins = 16;
+
+// Where to split order[begin, end): the binned surface-area heuristic over the centroid bounds (the split that
+// minimises area(left) * count(left) + area(right) * count(right)), falling back to the median on the longest axis
+// when every centroid falls in one bin. Reorders the range so that [begin, middle) is the left child; returns middle.
+int split_range(BuildContext& context, int begin, int end) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (int i = begin; i < end; ++i) {
     lo = lo.cwiseMin(context.centroids[context.order[i]]);
     hi = hi.cwiseMax(context.centroids[context.order[i]]);
   }
-  int axis = 0;
-  (hi - lo).maxCoeff(&axis);
-  const int middle = begin + (end - begin) / 2;
-  std::nth_element(context.order.begin() + begin, context.order.begin() + middle, context.order.begin() + end,
-                   [&](int a, int b) { return context.centroids[a][axis] < context.centroids[b][axis]; });
+  double best_cost = std::numeric_limits<double>::infinity();
+  int best_axis = -1, best_bin = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double extent = hi[axis] - lo[axis];
+    if (!(extent > 0.0)) continue;
+    std::array<FlatBox, kSahBins> bin_box;
+    std::array<int, kSahBins> bin_count{};
+    bin_box.fill(empty_flat_box());
+    const double scale = kSahBins / extent;
+    for (int i = begin; i < end; ++i) {
+      const int f = context.order[i];
+      const int bin = std::min(kSahBins - 1, static_cast<int>((context.centroids[f][axis] - lo[axis]) * scale));
+      bin_box[bin].expand(context.face_boxes[f]);
+      ++bin_count[bin];
+    }
+    std::array<double, kSahBins> right_cost{};
+    FlatBox right = empty_flat_box();
+    int right_count = 0;
+    for (int b = kSahBins - 1; b > 0; --b) {
+      right.expand(bin_box[b]);
+      right_count += bin_count[b];
+      right_cost[b] = right_count > 0 ? box_area(right) * right_count : 0.0;
+    }
+    FlatBox left = empty_flat_box();
+    int left_count = 0;
+    for (int b = 0; b + 1 < kSahBins; ++b) {
+      left.expand(bin_box[b]);
+      left_count += bin_count[b];
+      if (left_count == 0 || left_count == end - begin) continue;
+      const double cost = box_area(left) * left_count + right_cost[b + 1];
+      if (cost < best_cost) {
+        best_cost = cost;
+        best_axis = axis;
+        best_bin = b;
+      }
+    }
+  }
+  if (best_axis < 0) {
+    int axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const int middle = begin + (end - begin) / 2;
+    std::nth_element(context.order.begin() + begin, context.order.begin() + middle, context.order.begin() + end,
+                     [&](int a, int b) { return context.centroids[a][axis] < context.centroids[b][axis]; });
+    return middle;
+  }
+  const double scale = kSahBins / (hi[best_axis] - lo[best_axis]);
+  const auto middle = std::stable_partition(context.order.begin() + begin, context.order.begin() + end, [&](int f) {
+    return std::min(kSahBins - 1, static_cast<int>((context.centroids[f][best_axis] - lo[best_axis]) * scale)) <=
+           best_bin;
+  });
+  return static_cast<int>(middle - context.order.begin());
+}
+
+int build_range(BuildContext& context, int begin, int end) {
+  const int index = static_cast<int>(context.nodes.size());
+  context.nodes.push_back(BvhNode{-1, begin, end});
+  if (end - begin <= context.max_leaf) return index;
+  const int middle = split_range(context, begin, end);
   build_range(context, begin, middle);
   const int right = build_range(context, middle, end);
   context.nodes[index].right = right;
@@ -105,7 +163,7 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
   }
   nodes_.clear();
   nodes_.reserve(2 * static_cast<std::size_t>(face_count) / settings_.max_leaf_faces + 1);
-  BuildContext context{face_order_, centroids, nodes_, settings_.max_leaf_faces};
+  BuildContext context{face_order_, centroids, boxes.faces, nodes_, settings_.max_leaf_faces};
   build_range(context, 0, face_count);
 
   std::vector<int> position(face_count);

@@ -54,7 +54,8 @@ class Bvh {
   /// An empty hierarchy with the given settings; call build() or update() before use.
   explicit Bvh(const BvhSettings& settings = {});
 
-  /// Builds the tree top-down (median split of triangle box centres along the widest axis) and its volumes.
+  /// Builds the tree top-down (triangle box centres split by the binned surface-area heuristic, the median along the
+  /// widest axis where they cannot be) and its volumes.
   /// `start`/`end` are the body's positions (#V x 3), used for OBB axes; `boxes` must match them.
   void build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
 
