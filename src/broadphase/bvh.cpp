@@ -9,6 +9,8 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "node_obb_axes.hpp"
 
@@ -153,17 +155,22 @@ Bvh::Bvh(const BvhSettings& settings) : settings_(settings) {
 }
 
 void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end) {
+  check_vertex_boxes(topology, boxes);
   const int face_count = topology.face_count();
   face_order_.resize(face_count);
   std::iota(face_order_.begin(), face_order_.end(), 0);
+  std::vector<FlatBox> face_boxes(face_count);
   std::vector<Eigen::Vector3d> centroids(face_count);
   for (int f = 0; f < face_count; ++f) {
-    const FlatBox& b = boxes.faces[f];
+    FlatBox& b = face_boxes[f];
+    b = boxes.vertices[topology.faces(f, 0)];
+    b.expand(boxes.vertices[topology.faces(f, 1)]);
+    b.expand(boxes.vertices[topology.faces(f, 2)]);
     centroids[f] = Eigen::Vector3d(b.min[0] + b.max[0], b.min[1] + b.max[1], b.min[2] + b.max[2]);
   }
   nodes_.clear();
   nodes_.reserve(2 * static_cast<std::size_t>(face_count) / settings_.max_leaf_faces + 1);
-  BuildContext context{face_order_, centroids, boxes.faces, nodes_, settings_.max_leaf_faces};
+  BuildContext context{face_order_, centroids, face_boxes, nodes_, settings_.max_leaf_faces};
   build_range(context, 0, face_count);
 
   std::vector<int> position(face_count);
@@ -197,6 +204,7 @@ BvhUpdate Bvh::update(const BodyTopology& topology, const SweptBoxes& boxes, con
     build(topology, boxes, start, end);
     return BvhUpdate::Rebuilt;
   }
+  check_vertex_boxes(topology, boxes);
   refit(boxes);
   const bool degraded = built_looseness_ > 0 ? looseness_ > settings_.rebuild_ratio * built_looseness_
                                              : settings_.rebuild_ratio <= 0;
@@ -216,13 +224,33 @@ void Bvh::fit_obb_axes(const BodyTopology& topology, const Vertices& start, cons
   }
 }
 
+void Bvh::check_vertex_boxes(const BodyTopology& topology, const SweptBoxes& boxes) {
+  if (static_cast<int>(boxes.vertices.size()) != topology.vertex_count) {
+    throw std::invalid_argument("bvh: " + std::to_string(boxes.vertices.size()) + " vertex boxes for " +
+                                std::to_string(topology.vertex_count) + " vertices");
+  }
+}
+
+// Edge and face boxes are unions of vertex boxes (as compute_swept_boxes makes them), so they are made here from the
+// vertex boxes, straight in tree order.
 void Bvh::refit(const SweptBoxes& boxes) {
+  const FlatBox* vertex_boxes = boxes.vertices.data();
   ordered_face_boxes_.resize(face_order_.size());
-  for (std::size_t p = 0; p < face_order_.size(); ++p) ordered_face_boxes_[p] = boxes.faces[face_order_[p]];
+  for (std::size_t p = 0; p < face_order_.size(); ++p) {
+    const int* f = ordered_faces_.data() + 3 * p;
+    FlatBox b = vertex_boxes[f[0]];
+    b.expand(vertex_boxes[f[1]]);
+    b.expand(vertex_boxes[f[2]]);
+    ordered_face_boxes_[p] = b;
+  }
   ordered_vertex_boxes_.resize(owned_vertices_.size());
-  for (std::size_t i = 0; i < owned_vertices_.size(); ++i) ordered_vertex_boxes_[i] = boxes.vertices[owned_vertices_[i]];
+  for (std::size_t i = 0; i < owned_vertices_.size(); ++i) ordered_vertex_boxes_[i] = vertex_boxes[owned_vertices_[i]];
   ordered_edge_boxes_.resize(owned_edges_.size());
-  for (std::size_t i = 0; i < owned_edges_.size(); ++i) ordered_edge_boxes_[i] = boxes.edges[owned_edges_[i]];
+  for (std::size_t i = 0; i < owned_edges_.size(); ++i) {
+    FlatBox b = vertex_boxes[ordered_edges_[2 * i]];
+    b.expand(vertex_boxes[ordered_edges_[2 * i + 1]]);
+    ordered_edge_boxes_[i] = b;
+  }
   packed_face_boxes_.assign(ordered_face_boxes_);
   packed_vertex_boxes_.assign(ordered_vertex_boxes_);
   packed_edge_boxes_.assign(ordered_edge_boxes_);
@@ -238,7 +266,7 @@ void Bvh::refit(const SweptBoxes& boxes) {
       Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
       Eigen::Vector3d hi = -lo;
       for (int p = nodes_[i].face_begin; p < nodes_[i].face_end; ++p) {
-        const FlatBox& b = boxes.faces[face_order_[p]];
+        const FlatBox& b = ordered_face_boxes_[p];
         const Eigen::Vector3d c(0.5 * (b.min[0] + b.max[0]), 0.5 * (b.min[1] + b.max[1]), 0.5 * (b.min[2] + b.max[2]));
         const Eigen::Vector3d h(0.5 * (b.max[0] - b.min[0]), 0.5 * (b.max[1] - b.min[1]), 0.5 * (b.max[2] - b.min[2]));
         const Eigen::Vector3d center = axes_t * c;

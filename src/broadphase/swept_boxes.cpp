@@ -15,10 +15,11 @@ FlatBox empty_flat_box() {
   return FlatBox{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
 }
 
-void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, const Vertices& end, double thickness,
-                         SweptBoxes& boxes) {
+void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes) {
   const int vertex_count = static_cast<int>(start.rows());
   boxes.vertices.resize(vertex_count);
+  boxes.edges.clear();
+  boxes.faces.clear();
   const double* p = start.data();
   const double* q = end.data();
   const double half = 0.5 * thickness;
@@ -42,6 +43,11 @@ void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, co
       b.max[k] = grown_max(a < c ? c : a);
     }
   }
+}
+
+void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, const Vertices& end, double thickness,
+                         SweptBoxes& boxes) {
+  compute_swept_vertex_boxes(start, end, thickness, boxes);
   const int edge_count = topology.edge_count();
   boxes.edges.resize(edge_count);
   for (int e = 0; e < edge_count; ++e) {

@@ -38,7 +38,7 @@ struct Body {
   Vertices rest;   // obstacles: the mesh as added
   Vertices start;  // obstacles: positions of the coming step
   Vertices end;
-  broadphase::SweptBoxes boxes;
+  broadphase::SweptBoxes boxes;  // vertex boxes only (compute_swept_vertex_boxes): the hierarchy makes the rest
   broadphase::Bvh bvh;
   bool stale = true;    // boxes and hierarchy must be recomputed before the next search
   bool moving = false;  // positions were set for the coming step only
@@ -143,11 +143,11 @@ struct CollisionDetector::Impl {
 
   void refit(const Vertices& start, const Vertices& end) {
     const double thickness = settings.thickness;
-    broadphase::compute_swept_boxes(cloth.topology, start, end, thickness, cloth.boxes);
+    broadphase::compute_swept_vertex_boxes(start, end, thickness, cloth.boxes);  // the hierarchies need no more
     if (cloth.bvh.update(cloth.topology, cloth.boxes, start, end) == broadphase::BvhUpdate::Rebuilt) ++stats.rebuilds;
     for (Body& o : obstacles) {
       if (!o.stale) continue;
-      broadphase::compute_swept_boxes(o.topology, o.start, o.end, thickness, o.boxes);
+      broadphase::compute_swept_vertex_boxes(o.start, o.end, thickness, o.boxes);
       if (o.bvh.update(o.topology, o.boxes, o.start, o.end) == broadphase::BvhUpdate::Rebuilt) ++stats.rebuilds;
       o.stale = false;
     }

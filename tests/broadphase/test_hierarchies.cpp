@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include "broadphase_scenes.hpp"
@@ -277,4 +279,48 @@ TEST_CASE("searches restricted to moved vertices return exactly the brute-force 
 
   std::vector<std::uint8_t> wrong_size(3, 1);
   CHECK_THROWS_AS(find_self_candidates(cloth_body.view(0), {parallel, &wrong_size}, found), std::invalid_argument);
+}
+
+TEST_CASE("a hierarchy needs only the vertex boxes and refuses a wrong count", "[broadphase][refit]") {
+  // The hierarchy derives edge and face boxes from the vertex boxes: fed vertex boxes only, it holds exactly the boxes
+  // it holds when fed all of them, over a build and two refits of seeded random motion.
+  const TriangleMesh cloth = draped_cloth(9);
+  std::mt19937 rng(29);
+  for (const VolumeKind kind : {VolumeKind::Aabb, VolumeKind::Sphere, VolumeKind::Obb}) {
+    Bvh full({kind, 4, 2.0}), lean({kind, 4, 2.0});
+    SweptBoxes all, vertices_only;
+    for (int step = 0; step < 3; ++step) {
+      const Vertices end = jitter(cloth.vertices, 0.05, rng);
+      const BodyTopology topology = build_body_topology(cloth.faces, static_cast<int>(cloth.vertex_count()));
+      compute_swept_boxes(topology, cloth.vertices, end, 0.01, all);
+      compute_swept_vertex_boxes(cloth.vertices, end, 0.01, vertices_only);
+      CHECK(vertices_only.edges.empty());
+      CHECK(vertices_only.faces.empty());
+      REQUIRE(vertices_only.vertices.size() == all.vertices.size());
+      CHECK(std::equal(all.vertices.begin(), all.vertices.end(), vertices_only.vertices.begin(),
+                       [](const FlatBox& a, const FlatBox& b) { return std::memcmp(&a, &b, sizeof a) == 0; }));
+      (void)full.update(topology, all, cloth.vertices, end);
+      (void)lean.update(topology, vertices_only, cloth.vertices, end);
+      auto same = [](const std::vector<FlatBox>& a, const std::vector<FlatBox>& b) {
+        return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(FlatBox)) == 0;
+      };
+      CHECK(same(full.ordered_face_boxes(), lean.ordered_face_boxes()));
+      CHECK(same(full.ordered_edge_boxes(), lean.ordered_edge_boxes()));
+      CHECK(same(full.ordered_vertex_boxes(), lean.ordered_vertex_boxes()));
+      CHECK(same(full.boxes(), lean.boxes()));
+      // And the edge and face boxes are the ones compute_swept_boxes makes, in tree order.
+      for (std::size_t p = 0; p < lean.face_order().size(); ++p) {
+        CHECK(std::memcmp(&lean.ordered_face_boxes()[p], &all.faces[lean.face_order()[p]], sizeof(FlatBox)) == 0);
+      }
+      for (std::size_t i = 0; i < lean.owned_edges().size(); ++i) {
+        CHECK(std::memcmp(&lean.ordered_edge_boxes()[i], &all.edges[lean.owned_edges()[i]], sizeof(FlatBox)) == 0);
+      }
+    }
+    SweptBoxes short_by_one = vertices_only;
+    short_by_one.vertices.pop_back();
+    const BodyTopology topology = build_body_topology(cloth.faces, static_cast<int>(cloth.vertex_count()));
+    CHECK_THROWS_AS(lean.update(topology, short_by_one, cloth.vertices, cloth.vertices), std::invalid_argument);
+    CHECK_THROWS_AS(Bvh({kind, 4, 2.0}).build(topology, short_by_one, cloth.vertices, cloth.vertices),
+                    std::invalid_argument);
+  }
 }

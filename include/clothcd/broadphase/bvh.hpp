@@ -56,10 +56,13 @@ class Bvh {
 
   /// Builds the tree top-down (triangle box centres split by the binned surface-area heuristic, the median along the
   /// widest axis where they cannot be) and its volumes.
-  /// `start`/`end` are the body's positions (#V x 3), used for OBB axes; `boxes` must match them.
+  /// `start`/`end` are the body's positions (#V x 3), used for OBB axes; `boxes` must match them. Only
+  /// `boxes.vertices` is read (edge and face boxes are their unions; compute_swept_vertex_boxes is enough);
+  /// std::invalid_argument when it does not hold one box per vertex.
   void build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
 
-  /// Refits the volumes bottom-up for new boxes and positions, then rebuilds if the rebuild rule fires.
+  /// Refits the volumes bottom-up for new boxes and positions, then rebuilds if the rebuild rule fires. Reads
+  /// `boxes` as build() does.
   BvhUpdate update(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
 
   /// Settings in use.
@@ -114,6 +117,7 @@ class Bvh {
   [[nodiscard]] int build_count() const { return build_count_; }
 
  private:
+  static void check_vertex_boxes(const BodyTopology& topology, const SweptBoxes& boxes);
   void refit(const SweptBoxes& boxes);
   void fit_obb_axes(const BodyTopology& topology, const Vertices& start, const Vertices& end);
 

@@ -55,4 +55,8 @@ struct SweptBoxes {
 void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, const Vertices& end, double thickness,
                          SweptBoxes& boxes);
 
+/// The vertex boxes only, as compute_swept_boxes computes them; `boxes.edges` and `boxes.faces` are left empty. Enough
+/// for a Bvh (which derives edge and face boxes from the vertex boxes in its own order) and for body_box().
+void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes);
+
 }  // namespace clothcd::broadphase
