@@ -72,3 +72,20 @@ TEST_CASE("clothcd detect reports a cloth falling through a plate", "[detection]
             dir / "log.txt") != 0);
   fs::remove_all(dir);
 }
+
+TEST_CASE("clothcd detect names each copy of a face listed twice", "[detection][cli]") {
+  const fs::path dir = fs::temp_directory_path() / "clothcd_detect_cli_duplicate_test";
+  fs::create_directories(dir);
+  // Faces 0 and 1 are the same triangle; vertex 3 falls through it during the step.
+  const std::string faces = "f 1 2 3\nf 1 2 3\nf 4 4 4\n";
+  std::ofstream(dir / "t0.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.2 0.2 0.5\n" << faces;
+  std::ofstream(dir / "t1.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.2 0.2 -0.5\n" << faces;
+  const fs::path json = dir / "out.json";
+  REQUIRE(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t1.obj").string() + " --out " + json.string(),
+              dir / "log.txt") == 0);
+  const std::string out = read(json);
+  CHECK_THAT(out, Catch::Contains("\"pair\": [3, 0]"));
+  CHECK_THAT(out, Catch::Contains("\"pair\": [3, 1]"));
+  CHECK_THAT(out, Catch::Contains("\"vertex_face\": 2"));
+  fs::remove_all(dir);
+}

@@ -9,7 +9,6 @@
 #include <map>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_error.hpp"
@@ -28,8 +27,6 @@ struct DetectOptions {
   std::string model;
   std::string out;
 };
-
-std::int64_t face_key(int a, int b, int c, std::int64_t n) { return (static_cast<std::int64_t>(a) * n + b) * n + c; }
 
 void check_same_faces(const TriangleMesh& t0, const TriangleMesh& t1, const DetectOptions& o) {
   if (t0.vertex_count() != t1.vertex_count()) {
@@ -68,14 +65,29 @@ void weld_frames(TriangleMesh& t0, TriangleMesh& t1) {
   t1.faces = t0.faces;
 }
 
+// The face index of each vertex-face collision (collisions name the face by its three vertices): a face listed
+// several times in the mesh is several faces with the same vertices, named in turn for each vertex that hits them.
+std::vector<int> collision_faces(const TriangleMesh& mesh, const std::vector<Collision>& collisions) {
+  std::map<std::array<int, 3>, std::vector<int>> faces_of;
+  for (int f = 0; f < static_cast<int>(mesh.face_count()); ++f) {
+    faces_of[{mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)}].push_back(f);
+  }
+  std::map<std::pair<int, std::array<int, 3>>, std::size_t> named;  // (vertex, face vertices) -> faces named so far
+  std::vector<int> faces;
+  for (const Collision& c : collisions) {
+    if (c.kind != PairKind::VertexFace) continue;
+    const std::array<int, 3> key{c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
+    const std::vector<int>& candidates = faces_of.at(key);
+    std::size_t& next = named[{c.vertices[0].vertex, key}];
+    faces.push_back(candidates[std::min(next, candidates.size() - 1)]);
+    ++next;
+  }
+  return faces;
+}
+
 void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& mesh,
                 const std::vector<Collision>& collisions, const DetectionStats& s, double load_ms) {
-  const std::int64_t n = mesh.vertex_count();
-  std::unordered_map<std::int64_t, int> face_of;
-  face_of.reserve(static_cast<std::size_t>(mesh.face_count()));
-  for (int f = static_cast<int>(mesh.face_count()) - 1; f >= 0; --f) {
-    face_of[face_key(mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2), n)] = f;
-  }
+  const std::vector<int> faces = collision_faces(mesh, collisions);
   long vf = 0, ee = 0;
   for (const Collision& c : collisions) (c.kind == PairKind::VertexFace ? vf : ee) += 1;
   out << std::setprecision(17);
@@ -93,9 +105,10 @@ void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& m
         << ", \"filters_ms\": " << s.network_filters_ms << "},\n";
   const char* separator = "";
   out << "  \"vertex_face\": [";
+  std::size_t vertex_face_index = 0;
   for (const Collision& c : collisions) {
     if (c.kind != PairKind::VertexFace) continue;
-    const int f = face_of.at(face_key(c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex, n));
+    const int f = faces[vertex_face_index++];
     out << separator << "\n    {\"pair\": [" << c.vertices[0].vertex << ", " << f << "], \"toi\": " << c.toi
         << (c.conservative ? ", \"conservative\": true" : "") << "}";
     separator = ",";
