@@ -59,6 +59,12 @@ struct BuildContext {
 
 constexpr int kSahBins = 16;
 
+// The bin of centroid coordinate x for bins of width 1 / scale from lo: 0 .. kSahBins - 1 (0 for NaN).
+int bin_of(double x, double lo, double scale) {
+  const double b = (x - lo) * scale;
+  return b >= 1.0 ? std::min(kSahBins - 1, static_cast<int>(std::min(b, static_cast<double>(kSahBins)))) : 0;
+}
+
 // Where to split order[begin, end): the binned surface-area heuristic over the centroid bounds (the split that
 // minimises area(left) * count(left) + area(right) * count(right)), falling back to the median on the longest axis
 // when every centroid falls in one bin. Reorders the range so that [begin, middle) is the left child; returns middle.
@@ -72,15 +78,16 @@ int split_range(BuildContext& context, int begin, int end) {
   double best_cost = std::numeric_limits<double>::infinity();
   int best_axis = -1, best_bin = 0;
   for (int axis = 0; axis < 3; ++axis) {
+    // Bins need a finite, non-zero extent and scale (no NaN, infinite or subnormal extent reaches the bin index).
     const double extent = hi[axis] - lo[axis];
-    if (!(extent > 0.0)) continue;
+    const double scale = kSahBins / extent;
+    if (!(extent > 0.0) || !std::isfinite(extent) || !std::isfinite(scale)) continue;
     std::array<FlatBox, kSahBins> bin_box;
     std::array<int, kSahBins> bin_count{};
     bin_box.fill(empty_flat_box());
-    const double scale = kSahBins / extent;
     for (int i = begin; i < end; ++i) {
       const int f = context.order[i];
-      const int bin = std::min(kSahBins - 1, static_cast<int>((context.centroids[f][axis] - lo[axis]) * scale));
+      const int bin = bin_of(context.centroids[f][axis], lo[axis], scale);
       bin_box[bin].expand(context.face_boxes[f]);
       ++bin_count[bin];
     }
@@ -116,8 +123,7 @@ int split_range(BuildContext& context, int begin, int end) {
   }
   const double scale = kSahBins / (hi[best_axis] - lo[best_axis]);
   const auto middle = std::stable_partition(context.order.begin() + begin, context.order.begin() + end, [&](int f) {
-    return std::min(kSahBins - 1, static_cast<int>((context.centroids[f][best_axis] - lo[best_axis]) * scale)) <=
-           best_bin;
+    return bin_of(context.centroids[f][best_axis], lo[best_axis], scale) <= best_bin;
   });
   return static_cast<int>(middle - context.order.begin());
 }
@@ -167,6 +173,9 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
     b.expand(boxes.vertices[topology.faces(f, 1)]);
     b.expand(boxes.vertices[topology.faces(f, 2)]);
     centroids[f] = Eigen::Vector3d(b.min[0] + b.max[0], b.min[1] + b.max[1], b.min[2] + b.max[2]);
+    if (!centroids[f].allFinite()) {
+      throw std::invalid_argument("bvh: face " + std::to_string(f) + " has a NaN or infinite box");
+    }
   }
   nodes_.clear();
   nodes_.reserve(2 * static_cast<std::size_t>(face_count) / settings_.max_leaf_faces + 1);

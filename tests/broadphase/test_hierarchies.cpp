@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -322,5 +323,29 @@ TEST_CASE("a hierarchy needs only the vertex boxes and refuses a wrong count", "
     CHECK_THROWS_AS(lean.update(topology, short_by_one, cloth.vertices, cloth.vertices), std::invalid_argument);
     CHECK_THROWS_AS(Bvh({kind, 4, 2.0}).build(topology, short_by_one, cloth.vertices, cloth.vertices),
                     std::invalid_argument);
+  }
+}
+
+TEST_CASE("a hierarchy refuses non-finite boxes and splits coincident or far-flung triangles", "[broadphase]") {
+  const TriangleMesh cloth = make_grid(6, 6);
+  const BodyTopology topology = build_body_topology(cloth.faces, static_cast<int>(cloth.vertex_count()));
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    Vertices end = cloth.vertices;
+    end(7, 1) = bad;
+    SweptBoxes boxes;
+    compute_swept_vertex_boxes(cloth.vertices, end, 0.0, boxes);
+    Bvh bvh({VolumeKind::Aabb, 2, 2.0});
+    CHECK_THROWS_AS(bvh.build(topology, boxes, cloth.vertices, end), std::invalid_argument);
+  }
+  // Every triangle at one place (no split by surface area: the median split), triangles 1e-310 apart
+  // (subnormal: bins too narrow to index), 1e-300 or 1e300 apart: still exactly the brute-force pairs.
+  for (const double spread : {0.0, 1e-310, 1e-300, 1e300}) {
+    TriangleMesh soup = cloth;
+    for (Eigen::Index v = 0; v < soup.vertex_count(); ++v) soup.vertices.row(v) *= spread;
+    const TestBody body(soup, soup.vertices, 0.0, {VolumeKind::Aabb, 2, 2.0});
+    CandidateSet found, reference;
+    find_self_candidates(body.view(0), {false, nullptr}, found);
+    brute_force_self_candidates(body.view(0), reference);
+    check_same(sorted(found), sorted(reference));
   }
 }

@@ -58,7 +58,7 @@ class Bvh {
   /// widest axis where they cannot be) and its volumes.
   /// `start`/`end` are the body's positions (#V x 3), used for OBB axes; `boxes` must match them. Only
   /// `boxes.vertices` is read (edge and face boxes are their unions; compute_swept_vertex_boxes is enough);
-  /// std::invalid_argument when it does not hold one box per vertex.
+  /// std::invalid_argument when it does not hold one box per vertex or a face's box is not finite.
   void build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
 
   /// Refits the volumes bottom-up for new boxes and positions, then rebuilds if the rebuild rule fires. Reads
