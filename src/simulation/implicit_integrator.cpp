@@ -10,9 +10,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 namespace clothcd::simulation {
 namespace {
 
@@ -38,78 +35,27 @@ ImplicitIntegrator::ImplicitIntegrator(const IntegratorSettings& settings) : set
     throw std::invalid_argument("integrator: need max_cg_iterations >= 1 and 0 < cg_tolerance < 1");
 }
 
-void ImplicitIntegrator::index_incident_springs(int vertex_count) {
-  incident_offset_.assign(static_cast<std::size_t>(vertex_count) + 1, 0);
-  for (const SpringBlock& b : blocks_) {
-    ++incident_offset_[b.a3 / 3 + 1];
-    ++incident_offset_[b.b3 / 3 + 1];
-  }
-  for (int v = 0; v < vertex_count; ++v) incident_offset_[v + 1] += incident_offset_[v];
-  incident_.resize(static_cast<std::size_t>(incident_offset_.back()));
-  std::vector<int> cursor(incident_offset_.begin(), incident_offset_.end() - 1);
-  for (int s = 0; s < static_cast<int>(blocks_.size()); ++s) {
-    incident_[cursor[blocks_[s].a3 / 3]++] = 2 * s;
-    incident_[cursor[blocks_[s].b3 / 3]++] = 2 * s + 1;
-  }
-}
-
-// The product in two passes over independent items, so that both can run on several threads: every spring's term
-// S q = alpha (n . q) n + beta q (q = p_a - p_b; the operations of the Eigen expression alpha * n.dot(q) * n + beta * q,
-// in its order: n . q = (n0 q0 + n1 q1) + n2 q2, then per axis (alpha (n . q)) n_c + beta q_c), then for each vertex
-// m p plus the terms of its springs in increasing spring order (+ at the spring's first vertex, - at its second).
-// That is each vertex's sum in the order a scatter over the springs would make it, so the result does not depend on
-// the thread count, bit for bit.
-void ImplicitIntegrator::multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) {
+void ImplicitIntegrator::multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) const {
+  out = mass_diagonal_.cwiseProduct(p);
   const double* in = p.data();
-  terms_.resize(3 * blocks_.size());
-  double* terms = terms_.data();
-  const auto spring_terms = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t s = begin; s < end; ++s) {
-      const SpringBlock& b = blocks_[s];
-      const double n0 = b.n[0], n1 = b.n[1], n2 = b.n[2], beta = b.beta;
-      const double q0 = in[b.a3] - in[b.b3], q1 = in[b.a3 + 1] - in[b.b3 + 1], q2 = in[b.a3 + 2] - in[b.b3 + 2];
-      const double scale = b.alpha * ((n0 * q0 + n1 * q1) + n2 * q2);
-      terms[3 * s] = scale * n0 + beta * q0;
-      terms[3 * s + 1] = scale * n1 + beta * q1;
-      terms[3 * s + 2] = scale * n2 + beta * q2;
-    }
-  };
-  out.resize(p.size());
   double* sum = out.data();
-  const double* mass = mass_diagonal_.data();
-  const auto vertex_sums = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      double s0 = mass[3 * v] * in[3 * v], s1 = mass[3 * v + 1] * in[3 * v + 1], s2 = mass[3 * v + 2] * in[3 * v + 2];
-      for (int k = incident_offset_[v]; k < incident_offset_[v + 1]; ++k) {
-        const double* t = terms + 3 * (incident_[k] >> 1);
-        if (incident_[k] & 1) {
-          s0 -= t[0];
-          s1 -= t[1];
-          s2 -= t[2];
-        } else {
-          s0 += t[0];
-          s1 += t[1];
-          s2 += t[2];
-        }
-      }
-      const bool pinned = model.pinned[v] != 0;
-      sum[3 * v] = pinned ? 0.0 : s0;
-      sum[3 * v + 1] = pinned ? 0.0 : s1;
-      sum[3 * v + 2] = pinned ? 0.0 : s2;
-    }
-  };
-  const std::size_t vertex_count = static_cast<std::size_t>(model.vertex_count());
-  if (!settings_.parallel) {
-    spring_terms(0, blocks_.size());
-    vertex_sums(0, vertex_count);
-    return;
+  for (const SpringBlock& b : blocks_) {
+    // S q = alpha (n . q) n + beta q with the operations of the Eigen expression alpha * n.dot(q) * n + beta * q, in its
+    // order: n . q = (n0 q0 + n1 q1) + n2 q2, then per axis (alpha (n . q)) n_c + beta q_c. The block is read into
+    // locals first, as the stores into `sum` could otherwise alias it.
+    const double n0 = b.n[0], n1 = b.n[1], n2 = b.n[2], beta = b.beta;
+    const int a3 = b.a3, b3 = b.b3;
+    const double q0 = in[a3] - in[b3], q1 = in[a3 + 1] - in[b3 + 1], q2 = in[a3 + 2] - in[b3 + 2];
+    const double scale = b.alpha * ((n0 * q0 + n1 * q1) + n2 * q2);
+    const double s0 = scale * n0 + beta * q0, s1 = scale * n1 + beta * q1, s2 = scale * n2 + beta * q2;
+    sum[a3] += s0;
+    sum[a3 + 1] += s1;
+    sum[a3 + 2] += s2;
+    sum[b3] -= s0;
+    sum[b3 + 1] -= s1;
+    sum[b3 + 2] -= s2;
   }
-  const auto in_ranges = [](std::size_t count, std::size_t grain, const auto& work) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
-                      [&](const tbb::blocked_range<std::size_t>& r) { work(r.begin(), r.end()); });
-  };
-  in_ranges(blocks_.size(), 2048, spring_terms);
-  in_ranges(vertex_count, 512, vertex_sums);
+  filter_pinned(model, out);
 }
 
 IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model, const ClothState& state, double dt,
@@ -165,7 +111,6 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
     diagonal_.segment<3>(3 * spring.a) += block_diagonal;
     diagonal_.segment<3>(3 * spring.b) += block_diagonal;
   }
-  index_incident_springs(n);
   filter_pinned(model, rhs_);
   if (!std::isfinite(rhs_.squaredNorm()) || !std::isfinite(diagonal_.sum())) {
     std::ostringstream message;

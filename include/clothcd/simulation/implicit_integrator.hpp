@@ -15,8 +15,6 @@ namespace clothcd::simulation {
 struct IntegratorSettings {
   int max_cg_iterations = 20;     ///< Upper bound on conjugate-gradient iterations per step.
   double cg_tolerance = 1e-3;     ///< Stop when the residual norm falls below this fraction of the right-hand side's.
-  /// Run the spring product on the threads TBB allows; the result is the same bit for bit with one or several.
-  bool parallel = true;
 };
 
 /// What one solve did.
@@ -50,16 +48,10 @@ class ImplicitIntegrator {
     int a3;  ///< 3 a: offset of the spring's first vertex in a stacked 3n vector.
     int b3;  ///< 3 b: the same for its second vertex.
   };
-  void multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out);
-  void index_incident_springs(int vertex_count);
+  void multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
 
   IntegratorSettings settings_;
   std::vector<SpringBlock> blocks_;
-  /// The springs at each vertex in increasing order (CSR: vertex v's are incident_[incident_offset_[v] ..
-  /// incident_offset_[v + 1])), each as 2 s + (1 if v is the spring's second vertex, else 0).
-  std::vector<int> incident_offset_;
-  std::vector<int> incident_;
-  std::vector<double> terms_;  ///< Each spring's term S (p_a - p_b) of the current product (3 per spring).
   Eigen::VectorXd diagonal_, mass_diagonal_, rhs_, dv_, r_, z_, p_, ap_;
 };
 
