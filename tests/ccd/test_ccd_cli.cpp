@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "support/test_support.hpp"
 
@@ -20,6 +21,14 @@ std::string vertex_face_query(const std::string& z_end, int truth) {
          "0,1,0,1,0,1" + t + "1,1,0,1,0,1" + t + "0,1,1,1,0,1" + t;
 }
 
+// The summary's query, collision and ground-truth counts in `output`.
+void check_counts(const std::string& output, int queries, int colliding, int false_positives, int false_negatives) {
+  CHECK_THAT(output, Catch::Contains("queries:               " + std::to_string(queries)));
+  CHECK_THAT(output, Catch::Contains("colliding:             " + std::to_string(colliding)));
+  CHECK_THAT(output, Catch::Contains("false positives:       " + std::to_string(false_positives)));
+  CHECK_THAT(output, Catch::Contains("false negatives:       " + std::to_string(false_negatives)));
+}
+
 }  // namespace
 
 TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
@@ -31,10 +40,7 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
   const auto run =
       run_cli("ccd '" + dir.path().string() + "' --filter combined --per-query '" + (dir / "out.csv").string() + "'");
   REQUIRE(run.exit_code == 0);
-  CHECK_THAT(run.output, Catch::Contains("queries:               3"));
-  CHECK_THAT(run.output, Catch::Contains("colliding:             2"));
-  CHECK_THAT(run.output, Catch::Contains("false positives:       1"));
-  CHECK_THAT(run.output, Catch::Contains("false negatives:       0"));
+  check_counts(run.output, 3, 2, 1, 0);
   std::ifstream per_query(dir / "out.csv");
   std::stringstream buffer;
   buffer << per_query.rdbuf();
@@ -99,10 +105,7 @@ TEST_CASE("clothcd ccd reads a file larger than one chunk whole", "[ccd][cli]") 
   write_file(dir / "vertex-face/many.csv", text);
   const auto run = run_cli("ccd '" + dir.path().string() + "' --per-query '" + (dir / "out.csv").string() + "'");
   REQUIRE(run.exit_code == 0);
-  CHECK_THAT(run.output, Catch::Contains("queries:               9001"));
-  CHECK_THAT(run.output, Catch::Contains("colliding:             3001"));
-  CHECK_THAT(run.output, Catch::Contains("false positives:       0"));
-  CHECK_THAT(run.output, Catch::Contains("false negatives:       0"));
+  check_counts(run.output, queries, 3001, 0, 0);
   std::ifstream per_query(dir / "out.csv");
   std::string line, last;
   int lines = 0;
