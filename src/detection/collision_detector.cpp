@@ -262,7 +262,7 @@ struct CollisionDetector::Impl {
   void narrow_phase(const Vertices& start, const Vertices& end) {
     // Gathering the pairs' positions counts as culling time: it is the batch the filters read.
     auto t = Clock::now();
-    const ccd::CcdSettings ccd_settings{settings.thickness};
+    const ccd::CcdSettings ccd_settings{settings.thickness, settings.decide_exactly};
     const std::size_t total = batch.size();
     std::vector<ccd::CcdQuery>& queries = batch.queries;
     std::vector<std::uint8_t>& keep = batch.keep;

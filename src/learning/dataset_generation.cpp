@@ -179,7 +179,8 @@ GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings
   const std::size_t per_step = std::max<std::size_t>(1, (settings.max_rows + total_steps - 1) / total_steps);
   SplitMix64 sampler{settings.seed};
   std::vector<double> features(settings.features.count);
-  const ccd::CcdSettings label_settings;  // thickness 0
+  ccd::CcdSettings label_settings;  // thickness 0, every pair decided exactly
+  label_settings.decide_exactly = true;
   std::size_t done = 0;
 
   for (const std::string& scene_name : settings.scenes)

@@ -43,13 +43,15 @@ PairDataset make_random_pair_dataset(const RandomPairSettings& settings) {
   dataset.feature_names = pair_feature_names(settings.features);
   std::vector<double> features(dataset.feature_count());
   unsigned long long state = settings.seed;
+  ccd::CcdSettings exact;  // thickness 0
+  exact.decide_exactly = true;
   for (std::size_t i = 0; i < settings.rows; ++i) {
     const PairGeometry pair = random_pair(state, settings.motion);
     compute_pair_features(pair, settings.features, features.data());
     PairRow row;
     row.features = features.data();
     row.filter_label = ccd::combined_filters_cull(pair) ? 0 : 1;
-    row.exact_label = ccd::continuous_collision(pair).hit ? 1 : 0;
+    row.exact_label = ccd::continuous_collision(pair, exact).hit ? 1 : 0;
     row.type = pair.kind;
     row.scene = "random-pairs";
     dataset.add_row(row);

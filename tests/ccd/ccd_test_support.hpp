@@ -29,12 +29,33 @@ inline ccd::CcdQuery scaled(ccd::CcdQuery query, double scale) {
   return query;
 }
 
-/// Checks the exact reference, the fast path and (for colliding queries) that no filter culls.
+/// Thickness 0, every query decided exactly (ccd::CcdSettings::decide_exactly).
+inline ccd::CcdSettings exact_settings() {
+  ccd::CcdSettings settings;
+  settings.decide_exactly = true;
+  return settings;
+}
+
+/// Checks the answer of the default settings (undecided queries reported as conservative hits) against the exact
+/// mode's `exact`: never a miss, a proven hit only for a real one, and the same answer where it is not conservative.
+/// (That its toi is a lower bound is checked on the exact reference in test_ccd_differential.cpp.)
+inline void check_conservative_answer(const ccd::CcdQuery& query, const ccd::CcdResult& exact) {
+  const ccd::CcdResult fast = ccd::continuous_collision(query);
+  if (exact.hit) CHECK(fast.hit);
+  if (!exact.hit) CHECK(fast.state != ccd::CcdState::Hit);
+  if (fast.state != ccd::CcdState::ConservativeHit) {
+    CHECK(fast.hit == exact.hit);
+    CHECK(fast.toi == exact.toi);
+  }
+}
+
+/// Checks the exact reference, the fast path in both modes and (for colliding queries) that no filter culls.
 inline void check_query(const ccd::CcdQuery& query, bool expected) {
   CHECK(ccd::exact_collision_reference(query) == expected);
-  const ccd::CcdResult result = ccd::continuous_collision(query);
+  const ccd::CcdResult result = ccd::continuous_collision(query, exact_settings());
   CHECK(result.hit == expected);
   CHECK(result.state == (expected ? ccd::CcdState::Hit : ccd::CcdState::Separated));
+  check_conservative_answer(query, result);
   if (expected) {
     CHECK_FALSE(ccd::nonpenetration_filter_culls(query));
     CHECK_FALSE(ccd::projection_filter_culls(query));

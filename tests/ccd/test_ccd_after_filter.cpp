@@ -51,10 +51,11 @@ void check_same(const ccd::CcdResult& a, const ccd::CcdResult& b) {
 
 TEST_CASE("CCD behind a filter answers like the full CCD on every pair the filter passes", "[ccd][after-filter]") {
   const double thickness = GENERATE(0.0, 0.004);
+  const bool decide_exactly = GENERATE(false, true);
   const ccd::CcdFilter filter = GENERATE(ccd::CcdFilter::None, ccd::CcdFilter::NonPenetration,
                                          ccd::CcdFilter::Projection, ccd::CcdFilter::Combined);
   std::mt19937 rng(2024);
-  const ccd::CcdSettings settings{thickness};
+  const ccd::CcdSettings settings{thickness, decide_exactly};
   int passed = 0, hits = 0;
   for (const ccd::CcdQuery& query : test_queries(rng)) {
     if (ccd::filter_culls(filter, query, settings)) continue;

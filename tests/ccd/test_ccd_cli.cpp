@@ -78,6 +78,29 @@ TEST_CASE("clothcd ccd decides queries with non-double coordinates on their exac
   }
 }
 
+TEST_CASE("clothcd ccd reports undecided queries as conservative hits unless --exact", "[ccd][cli]") {
+  // A vertex-face query on a small integer grid (found by search) that interval arithmetic cannot decide and that
+  // misses by the exact reference: a conservative hit (a false positive) by default, a miss with --exact.
+  const char* points[8] = {"0,2,0", "1,0,0", "-1,1,2", "-2,2,-1", "0,-2,2", "-1,2,1", "1,1,-2", "0,-2,0"};
+  std::string text;
+  for (const char* p : points) {
+    std::stringstream row(p);
+    std::string coordinate;
+    while (std::getline(row, coordinate, ',')) text += coordinate + ",1,";
+    text += "0\n";
+  }
+  TempDir dir;
+  write_file(dir / "undecided.csv", text);
+  const auto fast = run_cli("ccd '" + (dir / "undecided.csv").string() + "' --type vf --filter combined");
+  REQUIRE(fast.exit_code == 0);
+  check_counts(fast.output, 1, 1, 1, 0);
+  CHECK_THAT(fast.output, Catch::Contains("(1 conservative)"));
+  const auto exact = run_cli("ccd '" + (dir / "undecided.csv").string() + "' --type vf --filter combined --exact");
+  REQUIRE(exact.exit_code == 0);
+  check_counts(exact.output, 1, 0, 0, 0);
+  CHECK_THAT(exact.output, Catch::Contains("decided exactly"));
+}
+
 TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cli][errors]") {
   TempDir dir;
   write_file(dir / "bad.csv", "1,1,1,1,1\n");

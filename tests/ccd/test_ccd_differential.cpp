@@ -97,7 +97,7 @@ void check_against_reference(const ccd::CcdQuery& query, Tally& tally) {
   const bool expected = ccd::exact_collision_reference(query);
   ++tally.queries;
   tally.reference_hits += expected ? 1 : 0;
-  const ccd::CcdResult result = ccd::continuous_collision(query);
+  const ccd::CcdResult result = ccd::continuous_collision(query, clothcd::test::exact_settings());
   INFO("start " << query.start[0].transpose() << " | " << query.start[1].transpose() << " | "
                 << query.start[2].transpose() << " | " << query.start[3].transpose());
   INFO("end   " << query.end[0].transpose() << " | " << query.end[1].transpose() << " | " << query.end[2].transpose()
@@ -108,6 +108,7 @@ void check_against_reference(const ccd::CcdQuery& query, Tally& tally) {
     CHECK(result.toi >= 0.0);
     CHECK(result.toi <= 1.0);
   }
+  clothcd::test::check_conservative_answer(query, result);
   if (expected) {
     CHECK_FALSE(ccd::nonpenetration_filter_culls(query));
     CHECK_FALSE(ccd::projection_filter_culls(query));
@@ -133,12 +134,16 @@ TEST_CASE("the time of impact is a lower bound of the earliest contact", "[ccd][
   // end positions start + below (end - start) taken exactly as rationals).
   const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
   QueryGenerator generator(kind == PairKind::VertexFace ? 8101u : 8102u);
-  int checked = 0;
+  const bool decide_exactly = GENERATE(false, true);
+  ccd::CcdSettings settings;
+  settings.decide_exactly = decide_exactly;
+  int checked = 0, conservative = 0;
   for (int i = 0; i < 300; ++i) {
-    const ccd::CcdQuery query = generator.random_query(kind);
-    const ccd::CcdResult result = ccd::continuous_collision(query);
+    const ccd::CcdQuery query = i % 4 == 3 ? generator.degenerate_query(kind) : generator.random_query(kind);
+    const ccd::CcdResult result = ccd::continuous_collision(query, settings);
     if (!result.hit || !(result.toi > 0.0)) continue;
     ++checked;
+    conservative += result.state == ccd::CcdState::ConservativeHit ? 1 : 0;
     const mpq_class below(std::nextafter(result.toi, 0.0));
     ccd::exact::RationalPoints points;
     for (int p = 0; p < 4; ++p) {
@@ -151,6 +156,7 @@ TEST_CASE("the time of impact is a lower bound of the earliest contact", "[ccd][
     CHECK_FALSE(ccd::exact::exact_collision(kind, points).hit);
   }
   CHECK(checked > 50);
+  if (!decide_exactly) CHECK(conservative > 0);  // the conservative hits' toi is checked too
 }
 
 TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference collision", "[ccd][differential]") {
@@ -222,6 +228,6 @@ TEST_CASE("batched filtering matches the single-query filters", "[ccd][filters]"
   }
   CHECK(kept == expected_kept);
   std::vector<ccd::CcdResult> results;
-  ccd::continuous_collision_batch(queries, keep, {}, results);
+  ccd::continuous_collision_batch(queries, keep, clothcd::test::exact_settings(), results);
   for (std::size_t i = 0; i < queries.size(); ++i) CHECK(results[i].hit == ccd::exact_collision_reference(queries[i]));
 }

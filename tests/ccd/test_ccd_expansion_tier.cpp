@@ -101,7 +101,9 @@ void check_tier(const ccd::CcdQuery& q, Tally& tally) {
       CHECK(answer->toi <= 1.0);
     }
   }
-  CHECK(ccd::continuous_collision(q).hit == expected);
+  const ccd::CcdResult exact = ccd::continuous_collision(q, clothcd::test::exact_settings());
+  CHECK(exact.hit == expected);
+  clothcd::test::check_conservative_answer(q, exact);
 }
 
 mpq_class exact_value(double x) {
@@ -256,9 +258,10 @@ TEST_CASE("expansion tier decides exact touching and whole-step coplanar motion"
     const auto answer = ccd::detail::expansion_collision(query);
     REQUIRE(answer.has_value());
     CHECK(answer->hit == expected);
-    const ccd::CcdResult result = ccd::continuous_collision(query);
+    const ccd::CcdResult result = ccd::continuous_collision(query, clothcd::test::exact_settings());
     CHECK(result.hit == expected);
     CHECK_FALSE(result.exact_fallback);
+    clothcd::test::check_conservative_answer(query, result);
   }
 }
 

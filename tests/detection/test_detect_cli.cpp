@@ -46,21 +46,27 @@ TEST_CASE("clothcd detect reports a cloth falling through a plate", "[detection]
   clothcd::save_mesh(t1, dir / "t1.obj");
 
   const fs::path json = dir / "out.json";
-  REQUIRE(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t1.obj").string() + " --bvh aabb --out " +
-                  json.string(),
-              dir / "log.txt") == 0);
-  const std::string out = read(json);
-  // Each of the 16 cloth vertices crosses the plate at t = 0.5: every toi is a lower bound of that, and a tight one.
-  CHECK(out.find("\"vertex_face\": [") != std::string::npos);
-  int tois = 0;
-  for (std::size_t at = out.find("\"toi\": "); at != std::string::npos; at = out.find("\"toi\": ", at + 1)) {
-    const double toi = std::stod(out.substr(at + 7));
-    CHECK(toi <= 0.5);
-    CHECK(toi > 0.5 - 1e-6);
-    ++tois;
+  for (const std::string exact : {"", " --exact"}) {
+    INFO("options:" << exact);
+    REQUIRE(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t1.obj").string() + " --bvh aabb --out " +
+                    json.string() + exact,
+                dir / "log.txt") == 0);
+    const std::string out = read(json);
+    // Each of the 16 cloth vertices crosses the plate at t = 0.5 (some exactly through a plate vertex or edge, which
+    // are conservative hits unless --exact): every toi is a lower bound of that, and a tight one.
+    CHECK(out.find("\"vertex_face\": [") != std::string::npos);
+    int tois = 0;
+    for (std::size_t at = out.find("\"toi\": "); at != std::string::npos; at = out.find("\"toi\": ", at + 1)) {
+      const double toi = std::stod(out.substr(at + 7));
+      CHECK(toi <= 0.5);
+      CHECK(toi > 0.5 - 1e-6);
+      ++tois;
+    }
+    CHECK(tois >= 16);
+    CHECK(out.find("\"vertex_face\": 0") == std::string::npos);
+    CHECK((out.find("\"exact\": true") != std::string::npos) == !exact.empty());
+    if (!exact.empty()) CHECK(out.find("conservative") == std::string::npos);
   }
-  CHECK(tois >= 16);
-  CHECK(out.find("\"vertex_face\": 0") == std::string::npos);
 
   // A frame with one face fewer does not describe the same mesh.
   clothcd::TriangleMesh other = t1;

@@ -80,7 +80,11 @@ inline bool projection_filter_removes(const PairGeometry& pair) {
 inline int filter_label(const PairGeometry& pair) { return ccd::combined_filters_cull(pair) ? 0 : 1; }
 
 /// The exact label from the CCD stage's safe narrow phase: 1 when the pair collides during the step.
-inline int exact_label(const PairGeometry& pair) { return ccd::continuous_collision(pair).hit ? 1 : 0; }
+inline int exact_label(const PairGeometry& pair) {
+  ccd::CcdSettings exact;
+  exact.decide_exactly = true;
+  return ccd::continuous_collision(pair, exact).hit ? 1 : 0;
+}
 
 /// `rows` labelled random pairs with `feature_count` features, split 60/20/20 from `seed`.
 inline PairDataset make_pair_dataset(std::size_t rows, unsigned long long seed, std::size_t feature_count = 15) {

@@ -30,6 +30,7 @@ struct CcdCommandOptions {
   std::string filter = "none";
   std::string model;
   double thickness = 0.0;
+  bool exact = false;
   bool json = false;
   std::string per_query;
 };
@@ -67,7 +68,8 @@ const char* state_name(ccd::CcdState state) {
 void print_summary(const CcdCommandOptions& options, const Summary& s) {
   if (options.json) {
     std::cout << "{\"path\": " << json_string(options.path) << ", \"filter\": \"" << options.filter
-              << "\", \"thickness\": " << options.thickness << ", \"queries\": " << s.queries
+              << "\", \"thickness\": " << options.thickness << ", \"exact\": " << (options.exact ? "true" : "false")
+              << ", \"queries\": " << s.queries
               << ", \"colliding\": " << s.colliding << ", \"conservative\": " << s.conservative
               << ", \"with_ground_truth\": " << s.with_truth << ", \"truth_colliding\": " << s.truth_colliding
               << ", \"false_positives\": " << s.false_positives << ", \"false_negatives\": " << s.false_negatives
@@ -87,7 +89,8 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
   }
   const auto percent = [&](std::size_t n) { return s.queries ? 100.0 * static_cast<double>(n) / s.queries : 0.0; };
   std::cout << std::fixed << std::setprecision(1) << "path:                  " << options.path << '\n'
-            << "filter:                " << options.filter << "  (thickness " << options.thickness << ")\n"
+            << "filter:                " << options.filter << "  (thickness " << options.thickness
+            << (options.exact ? ", undecided queries decided exactly" : "") << ")\n"
             << "queries:               " << s.queries << '\n'
             << "colliding:             " << s.colliding << "  (" << s.conservative << " conservative)\n";
   if (s.with_truth > 0) {
@@ -211,6 +214,7 @@ void run_ccd(const CcdCommandOptions& options) {
   if (!options.type.empty() && !kind) throw std::invalid_argument("unknown --type '" + options.type + "' (vf, ee)");
   ccd::CcdSettings settings;
   settings.thickness = options.thickness;
+  settings.decide_exactly = options.exact;
   if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness))
     throw std::invalid_argument("--thickness must be a finite number >= 0");
 
@@ -272,6 +276,9 @@ void add_ccd_command(CLI::App& app) {
   command->add_option("--model", options->model,
                       "Pair network for --filter network: model directory or network.xml (default models/default)");
   command->add_option("--thickness", options->thickness, "Minimum separation (>= 0, default 0)");
+  command->add_flag("--exact", options->exact,
+                    "Thickness 0: decide the queries interval arithmetic leaves undecided exactly (no false positive, "
+                    "slower) instead of reporting them as conservative hits");
   command->add_flag("--json", options->json, "Print the summary as one JSON object");
   command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");
   command->callback([options] { run_ccd(*options); });

@@ -22,6 +22,7 @@ struct DetectOptions {
   std::string t0_path;
   std::string t1_path;
   double thickness = 0.0;
+  bool exact = false;
   std::string bvh = "sphere-root-aabb";
   std::string filter = "combined";
   std::string model;
@@ -93,7 +94,7 @@ void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& m
   out << std::setprecision(17);
   out << "{\n  \"t0\": " << json_string(o.t0_path) << ",\n  \"t1\": " << json_string(o.t1_path) << ",\n"
       << "  \"vertices\": " << mesh.vertex_count() << ",\n  \"faces\": " << mesh.face_count() << ",\n"
-      << "  \"thickness\": " << o.thickness << ",\n  \"bvh\": \"" << o.bvh << "\",\n  \"filter\": \"" << o.filter
+      << "  \"thickness\": " << o.thickness << ",\n  \"exact\": " << (o.exact ? "true" : "false") << ",\n  \"bvh\": \"" << o.bvh << "\",\n  \"filter\": \"" << o.filter
       << "\",\n  \"counts\": {\"candidates_vertex_face\": " << s.candidates_vertex_face
       << ", \"candidates_edge_edge\": " << s.candidates_edge_edge << ", \"culled\": " << s.culled
       << ", \"vertex_face\": " << vf << ", \"edge_edge\": " << ee << "},\n"
@@ -140,6 +141,7 @@ void run_detect(const DetectOptions& o) {
   settings.hierarchy = hierarchies.at(o.bvh);
   settings.culling = filters.at(o.filter);
   settings.thickness = o.thickness;
+  settings.decide_exactly = o.exact;
 
   const auto t = std::chrono::steady_clock::now();
   // Keep every vertex and face as stored so that both frames keep the same numbering, then weld the two together.
@@ -188,6 +190,9 @@ void add_detect_command(CLI::App& app) {
   command->add_option("T1_MESH", o->t1_path, "Same mesh (same faces) at the end of the step")->required();
   command->add_option("--thickness", o->thickness, "Minimum separation, in mesh units")
       ->check(CLI::NonNegativeNumber);
+  command->add_flag("--exact", o->exact,
+                    "Thickness 0: decide the pairs interval arithmetic leaves undecided exactly instead of reporting "
+                    "them as conservative hits");
   command->add_option("--bvh", o->bvh, "Hierarchy")
       ->check(CLI::IsMember({"sphere-root-aabb", "aabb", "aabb-obb"}))
       ->capture_default_str();

@@ -49,6 +49,9 @@ struct DetectorSettings {
   /// at the start and end of the step, tried before the paper's five fixed directions (ccd::ProjectionFilterOptions).
   /// Culls far more of a cloth resting on a surface at the thickness; false gives the paper's filter exactly.
   bool projection_normals = true;
+  /// Thickness 0: decide the pairs interval arithmetic leaves undecided exactly instead of reporting them as
+  /// conservative hits (ccd::CcdSettings::decide_exactly).
+  bool decide_exactly = false;
 };
 
 /// Counts and times of the last detect() call.
