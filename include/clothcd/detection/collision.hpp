@@ -29,7 +29,7 @@ struct Collision {
   /// EdgeEdge: the parameters (s on edge a, u on edge b) of the closest points, each in [0, 1].
   std::array<double, 2> parameters{};
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi, from the second primitive to the first.
-  bool conservative = false;  ///< True when reported because exactness could not be established (toi is then 0).
+  bool conservative = false;  ///< True when reported because the CCD could not decide the pair (toi: a lower bound).
 };
 
 }  // namespace clothcd
