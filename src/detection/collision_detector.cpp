@@ -96,7 +96,6 @@ struct CollisionDetector::Impl {
   Body cloth;
   std::vector<Body> obstacles;
   detail::PairBatch batch;   // the pairs of the last call and their narrow-phase work
-  detail::PairBatch spare;   // storage for the next batch when the last one is partly reused
   broadphase::CandidateSet fresh;  // candidates found by this call's search
   std::vector<std::size_t> todo;   // positions in `batch` of the pairs this call must test
   std::vector<std::size_t> blocks;  // positions in `todo` where the blocks of the block filter start
@@ -167,36 +166,27 @@ struct CollisionDetector::Impl {
     // Candidates stay in search order; only the (far fewer) collisions are put in canonical order (see collect()).
   }
 
-  // Makes `batch` this call's pairs and `todo` the positions still to test: with `only_moved`, the unmoved pairs of
-  // the last call (work kept) followed by the fresh ones; otherwise just the fresh ones.
+  // Makes `batch` this call's pairs and `todo` the positions still to test (vertex-face ones first): with
+  // `only_moved`, the fresh pairs take the places of the last call's pairs with a moved vertex (the others keep their
+  // work); otherwise the batch is just the fresh pairs.
   void assemble(bool only_moved) {
-    todo.clear();
-    if (only_moved) {
-      todo = detail::merge_unmoved(batch, moved, fresh, spare);
-      std::swap(batch, spare);
-      return;
-    }
-    std::swap(batch.candidates, fresh);
-    batch.resize_to_candidates();
-    for (std::size_t i = 0; i < batch.size(); ++i) todo.push_back(i);
+    todo = only_moved ? detail::replace_moved(batch, moved, fresh) : batch.assign(fresh);
   }
 
   // Sets and returns the batch's vertex references of the pair at position i.
   const std::array<VertexRef, 4>& fill_refs(std::size_t i) {
-    const broadphase::CandidateSet& candidates = batch.candidates;
-    const std::size_t vf = candidates.vertex_face.size();
+    const detail::BatchPair& pair = batch.pairs[i];
+    const auto& [body_a, a, body_b, b] = pair.fields;
     std::array<VertexRef, 4>& r = batch.refs[i];
-    if (i < vf) {
-      const auto& c = candidates.vertex_face[i];
-      const auto& faces = topology_of(c.face_body).faces;
-      r = {VertexRef{c.vertex_body, c.vertex}, VertexRef{c.face_body, faces(c.face, 0)},
-           VertexRef{c.face_body, faces(c.face, 1)}, VertexRef{c.face_body, faces(c.face, 2)}};
+    if (pair.kind == PairKind::VertexFace) {
+      const auto& faces = topology_of(body_b).faces;
+      r = {VertexRef{body_a, a}, VertexRef{body_b, faces(b, 0)}, VertexRef{body_b, faces(b, 1)},
+           VertexRef{body_b, faces(b, 2)}};
     } else {
-      const auto& c = candidates.edge_edge[i - vf];
-      const auto& ea = topology_of(c.body_a).edges;
-      const auto& eb = topology_of(c.body_b).edges;
-      r = {VertexRef{c.body_a, ea[2 * c.edge_a]}, VertexRef{c.body_a, ea[2 * c.edge_a + 1]},
-           VertexRef{c.body_b, eb[2 * c.edge_b]}, VertexRef{c.body_b, eb[2 * c.edge_b + 1]}};
+      const auto& ea = topology_of(body_a).edges;
+      const auto& eb = topology_of(body_b).edges;
+      r = {VertexRef{body_a, ea[2 * a]}, VertexRef{body_a, ea[2 * a + 1]}, VertexRef{body_b, eb[2 * b]},
+           VertexRef{body_b, eb[2 * b + 1]}};
     }
     return r;
   }
@@ -204,7 +194,7 @@ struct CollisionDetector::Impl {
   // Fills `q` with the CCD query and the batch's vertex references with those of the pair at position i.
   void gather(const Vertices& start, const Vertices& end, std::size_t i, ccd::CcdQuery& q) {
     const std::array<VertexRef, 4>& r = fill_refs(i);
-    q.kind = i < batch.candidates.vertex_face.size() ? PairKind::VertexFace : PairKind::EdgeEdge;
+    q.kind = batch.pairs[i].kind;
     for (int k = 0; k < 4; ++k) {
       q.start[k] = start_of(r[k].body, start).row(r[k].vertex).transpose();
       q.end[k] = end_of(r[k].body, end).row(r[k].vertex).transpose();
@@ -215,11 +205,12 @@ struct CollisionDetector::Impl {
   // of one kind at a time (ccd::detail::projection_filter_block); sets their keep flags.
   void cull_in_blocks(const Vertices& start, const Vertices& end, const ccd::CcdSettings& ccd_settings) {
     constexpr std::size_t lanes = ccd::detail::QueryBlock::kLanes;
-    const std::size_t vf = batch.candidates.vertex_face.size();
     // todo holds the vertex-face positions first, then the edge-edge ones (each ascending): blocks of up to `lanes`
     // positions of one kind.
-    const std::size_t first_edge_edge =
-        static_cast<std::size_t>(std::lower_bound(todo.begin(), todo.end(), vf) - todo.begin());
+    const std::size_t first_edge_edge = static_cast<std::size_t>(
+        std::partition_point(todo.begin(), todo.end(),
+                             [&](std::size_t i) { return batch.pairs[i].kind == PairKind::VertexFace; }) -
+        todo.begin());
     blocks.clear();
     for (std::size_t j = 0; j < first_edge_edge; j += lanes) blocks.push_back(j);
     for (std::size_t j = first_edge_edge; j < todo.size(); j += lanes) blocks.push_back(j);
@@ -231,7 +222,7 @@ struct CollisionDetector::Impl {
       const std::size_t segment_end = first < first_edge_edge ? first_edge_edge : todo.size();
       const std::size_t last = std::min(first + lanes, segment_end);
       ccd::detail::QueryBlock block;
-      block.kind = todo[first] < vf ? PairKind::VertexFace : PairKind::EdgeEdge;
+      block.kind = batch.pairs[todo[first]].kind;
       block.count = static_cast<int>(last - first);
       for (int lane = 0; lane < block.count; ++lane) {
         const std::array<VertexRef, 4>& r = fill_refs(todo[first + lane]);
@@ -320,9 +311,7 @@ struct CollisionDetector::Impl {
   // The hits as collisions in canonical candidate order: vertex-face pairs first, each kind sorted like
   // broadphase::sort_candidates would sort the candidates.
   void collect() {
-    const broadphase::CandidateSet& candidates = batch.candidates;
     const std::vector<ccd::CcdResult>& results = batch.results;
-    const std::size_t vf = candidates.vertex_face.size();
     // Canonical order by one integer key per hit: numbering every body's vertices (faces, edges) one after the other
     // in body order maps (body, index) to a dense number with the same order, and dense first * (count of the second
     // kind) + dense second orders like the candidate's four fields. Vertex-face hits come first.
@@ -344,15 +333,14 @@ struct CollisionDetector::Impl {
     const std::vector<std::uint8_t>& keep = batch.keep;
     for (std::size_t i = 0; i < results.size(); ++i) {
       if (!keep[i] || !results[i].hit) continue;
-      if (i < vf) {
-        const auto& c = candidates.vertex_face[i];
-        const std::uint64_t first = vertex_base[c.vertex_body] + static_cast<std::uint64_t>(c.vertex);
-        const std::uint64_t second = face_base[c.face_body] + static_cast<std::uint64_t>(c.face);
+      const auto& [body_a, a, body_b, b] = batch.pairs[i].fields;
+      if (batch.pairs[i].kind == PairKind::VertexFace) {
+        const std::uint64_t first = vertex_base[body_a] + static_cast<std::uint64_t>(a);
+        const std::uint64_t second = face_base[body_b] + static_cast<std::uint64_t>(b);
         vertex_face_hits.push_back({first * face_base[bodies] + second, i});
       } else {
-        const auto& c = candidates.edge_edge[i - vf];
-        const std::uint64_t first = edge_base[c.body_a] + static_cast<std::uint64_t>(c.edge_a);
-        const std::uint64_t second = edge_base[c.body_b] + static_cast<std::uint64_t>(c.edge_b);
+        const std::uint64_t first = edge_base[body_a] + static_cast<std::uint64_t>(a);
+        const std::uint64_t second = edge_base[body_b] + static_cast<std::uint64_t>(b);
         edge_edge_hits.push_back({first * edge_base[bodies] + second, i});
       }
     }
@@ -367,7 +355,7 @@ struct CollisionDetector::Impl {
   void add_collision(std::size_t i) {
     const ccd::CcdResult& result = batch.results[i];
     Collision c;
-    c.kind = i < batch.candidates.vertex_face.size() ? PairKind::VertexFace : PairKind::EdgeEdge;
+    c.kind = batch.pairs[i].kind;
     c.vertices = batch.refs[i];
     c.toi = result.toi;
     c.parameters = result.parameters;
@@ -451,8 +439,9 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
   d.search(reuse);
   d.assemble(reuse);
   d.stats.traversal_ms = milliseconds_since(t);
-  d.stats.candidates_vertex_face = static_cast<long>(d.batch.candidates.vertex_face.size());
-  d.stats.candidates_edge_edge = static_cast<long>(d.batch.candidates.edge_edge.size());
+  for (const detail::BatchPair& pair : d.batch.pairs) {
+    (pair.kind == PairKind::VertexFace ? d.stats.candidates_vertex_face : d.stats.candidates_edge_edge) += 1;
+  }
 
   d.narrow_phase(start, end);
   if (d.settings.reuse_unchanged && !d.network) {

@@ -1,14 +1,44 @@
 // Reuse of a detect() call's pair work by the next call of the same step (see pair_batch.hpp).
 #include "pair_batch.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace clothcd::detail {
+namespace {
 
-void PairBatch::resize_to_candidates() {
-  refs.resize(size());
-  keep.resize(size());
-  results.resize(size());
+// Resizes the per-pair arrays (all but the queries) to the pairs.
+void resize_to_pairs(PairBatch& batch) {
+  batch.refs.resize(batch.size());
+  batch.keep.resize(batch.size());
+  batch.results.resize(batch.size());
+}
+
+// Moves the pair at position `from` (and its work) to position `to`.
+void move_pair(PairBatch& batch, std::size_t from, std::size_t to) {
+  batch.pairs[to] = batch.pairs[from];
+  batch.refs[to] = batch.refs[from];
+  batch.keep[to] = batch.keep[from];
+  if (batch.keep[from]) batch.results[to] = batch.results[from];  // culled pairs have no result
+}
+
+// `positions` with the vertex-face pairs first, each kind in increasing order.
+void order_by_kind(const PairBatch& batch, std::vector<std::size_t>& positions) {
+  std::sort(positions.begin(), positions.end());
+  std::stable_partition(positions.begin(), positions.end(),
+                        [&](std::size_t i) { return batch.pairs[i].kind == PairKind::VertexFace; });
+}
+
+}  // namespace
+
+std::vector<std::size_t> PairBatch::assign(const broadphase::CandidateSet& fresh) {
+  pairs.clear();
+  for (const auto& c : fresh.vertex_face) pairs.push_back(BatchPair::of(c));
+  for (const auto& c : fresh.edge_edge) pairs.push_back(BatchPair::of(c));
+  resize_to_pairs(*this);
+  std::vector<std::size_t> all(size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return all;
 }
 
 std::size_t find_moved_rows(const Vertices& before, const Vertices& now, std::vector<std::uint8_t>& moved) {
@@ -22,47 +52,48 @@ std::size_t find_moved_rows(const Vertices& before, const Vertices& now, std::ve
   return count;
 }
 
-std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vector<std::uint8_t>& moved,
-                                       const broadphase::CandidateSet& fresh, PairBatch& next) {
-  auto unmoved = [&](std::size_t i) {
-    for (const VertexRef& r : previous.refs[i]) {
-      if (r.body == 0 && moved[r.vertex] != 0) return false;
-    }
-    return true;
-  };
-  const std::size_t previous_vf = previous.candidates.vertex_face.size();
-  next.candidates.clear();
-  std::vector<std::size_t> from;  // position in `previous` of each reused pair, in next's order
-  from.reserve(previous.size());
-  for (std::size_t i = 0; i < previous_vf; ++i) {
-    if (!unmoved(i)) continue;
-    from.push_back(i);
-    next.candidates.vertex_face.push_back(previous.candidates.vertex_face[i]);
+std::vector<std::size_t> replace_moved(PairBatch& batch, const std::vector<std::uint8_t>& moved,
+                                       const broadphase::CandidateSet& fresh) {
+  // A pair's cloth vertices index `moved`; obstacle vertices read a flag that is always 0 (one past the cloth's).
+  std::vector<std::uint8_t> flags(moved.size() + 1, 0);
+  std::copy(moved.begin(), moved.end(), flags.begin());
+  const std::size_t never = moved.size();
+  std::vector<std::size_t> holes;
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    std::uint8_t any = 0;
+    for (const VertexRef& r : batch.refs[i]) any |= flags[r.body == 0 ? static_cast<std::size_t>(r.vertex) : never];
+    if (any) holes.push_back(i);
   }
-  const std::size_t reused_vf = from.size();
-  for (std::size_t i = previous_vf; i < previous.size(); ++i) {
-    if (!unmoved(i)) continue;
-    from.push_back(i);
-    next.candidates.edge_edge.push_back(previous.candidates.edge_edge[i - previous_vf]);
-  }
-  const std::size_t reused_ee = from.size() - reused_vf;
-  next.candidates.vertex_face.insert(next.candidates.vertex_face.end(), fresh.vertex_face.begin(),
-                                     fresh.vertex_face.end());
-  next.candidates.edge_edge.insert(next.candidates.edge_edge.end(), fresh.edge_edge.begin(), fresh.edge_edge.end());
-  next.resize_to_candidates();
 
-  const std::size_t next_vf = next.candidates.vertex_face.size();
+  std::vector<BatchPair> incoming;
+  incoming.reserve(fresh.size());
+  for (const auto& c : fresh.vertex_face) incoming.push_back(BatchPair::of(c));
+  for (const auto& c : fresh.edge_edge) incoming.push_back(BatchPair::of(c));
+
   std::vector<std::size_t> todo;
-  todo.reserve(fresh.size());
-  auto copy = [&](std::size_t to, std::size_t i) {
-    next.refs[to] = previous.refs[i];
-    next.keep[to] = previous.keep[i];
-    if (previous.keep[i]) next.results[to] = previous.results[i];  // culled pairs have no result
-  };
-  for (std::size_t j = 0; j < reused_vf; ++j) copy(j, from[j]);
-  for (std::size_t p = reused_vf; p < next_vf; ++p) todo.push_back(p);
-  for (std::size_t j = 0; j < reused_ee; ++j) copy(next_vf + j, from[reused_vf + j]);
-  for (std::size_t p = next_vf + reused_ee; p < next.size(); ++p) todo.push_back(p);
+  todo.reserve(incoming.size());
+  const std::size_t placed_in_holes = std::min(holes.size(), incoming.size());
+  for (std::size_t j = 0; j < placed_in_holes; ++j) {
+    batch.pairs[holes[j]] = incoming[j];
+    todo.push_back(holes[j]);
+  }
+  if (incoming.size() > holes.size()) {
+    const std::size_t first_new = batch.size();
+    batch.pairs.insert(batch.pairs.end(), incoming.begin() + static_cast<std::ptrdiff_t>(placed_in_holes),
+                       incoming.end());
+    resize_to_pairs(batch);
+    for (std::size_t i = first_new; i < batch.size(); ++i) todo.push_back(i);
+  } else {
+    // The holes left over are the largest ones (the fresh pairs took the smallest): fill each from the end, largest
+    // first. Every position after the smallest of them is such a hole or a pair that keeps its work, never a fresh one.
+    for (std::size_t j = holes.size(); j-- > placed_in_holes;) {
+      const std::size_t last = batch.size() - 1;
+      if (holes[j] != last) move_pair(batch, last, holes[j]);
+      batch.pairs.pop_back();
+    }
+    resize_to_pairs(batch);
+  }
+  order_by_kind(batch, todo);
   return todo;
 }
 

@@ -2,7 +2,8 @@
 // The candidate pairs of one detect() call with everything the narrow phase worked out for them, and the reuse of
 // that work by the next call of the same step: with the same start positions, a pair none of whose vertices moved
 // has the same swept boxes, the same filter verdict and the same CCD result, so only pairs with a moved vertex need
-// searching and testing again.
+// searching and testing again. Their places are taken by the newly found pairs in place, so a call that moved a few
+// vertices touches a few pairs, not the whole batch.
 
 #include <array>
 #include <cstdint>
@@ -15,29 +16,46 @@
 
 namespace clothcd::detail {
 
-/// Candidates and, per pair (vertex-face pairs first, then edge-edge pairs), its CCD query, vertex references, filter
+/// A candidate of either kind: a vertex-face candidate's fields (vertex body, vertex, face body, face) or an edge-edge
+/// candidate's (body a, edge a, body b, edge b).
+struct BatchPair {
+  PairKind kind = PairKind::VertexFace;  ///< Pair kind.
+  std::array<std::int32_t, 4> fields{};  ///< The candidate's four fields in declaration order.
+
+  /// The pair of a vertex-face candidate.
+  static BatchPair of(const broadphase::VertexFaceCandidate& c) {
+    return {PairKind::VertexFace, {c.vertex_body, c.vertex, c.face_body, c.face}};
+  }
+  /// The pair of an edge-edge candidate.
+  static BatchPair of(const broadphase::EdgeEdgeCandidate& c) {
+    return {PairKind::EdgeEdge, {c.body_a, c.edge_a, c.body_b, c.edge_b}};
+  }
+};
+
+/// The pairs of a call, in no particular order, and per pair its CCD query (network mode), vertex references, filter
 /// verdict (keep) and CCD result.
 struct PairBatch {
-  broadphase::CandidateSet candidates;         ///< The pairs.
+  std::vector<BatchPair> pairs;                ///< The pairs.
   std::vector<ccd::CcdQuery> queries;          ///< Network mode: positions of every pair (its culler reads them).
-  std::vector<std::array<VertexRef, 4>> refs;  ///< Vertices of each pair.
+  std::vector<std::array<VertexRef, 4>> refs;  ///< Vertices of each pair (set by the narrow phase).
   std::vector<std::uint8_t> keep;              ///< 1 when the pair survived culling.
   std::vector<ccd::CcdResult> results;         ///< CCD result of each kept pair (unset where keep is 0).
 
   /// Number of pairs.
-  [[nodiscard]] std::size_t size() const { return candidates.size(); }
-  /// Resizes the per-pair arrays (all but the queries) to the candidates.
-  void resize_to_candidates();
+  [[nodiscard]] std::size_t size() const { return pairs.size(); }
+  /// Makes the batch exactly `fresh` (vertex-face pairs first) and returns every position, vertex-face ones first.
+  std::vector<std::size_t> assign(const broadphase::CandidateSet& fresh);
 };
 
 /// Sets moved[v] = 1 for the rows of `now` that differ bitwise from those of `before` (same shape), else 0; returns
 /// how many moved.
 std::size_t find_moved_rows(const Vertices& before, const Vertices& now, std::vector<std::uint8_t>& moved);
 
-/// Fills `next` with the pairs of `previous` that have no moved cloth vertex (body 0, flags `moved`), their work
-/// copied (all but the queries), followed kind by kind by the `fresh` pairs; returns the positions in `next` of the
-/// fresh pairs, whose queries, verdicts and results are still to be computed.
-std::vector<std::size_t> merge_unmoved(const PairBatch& previous, const std::vector<std::uint8_t>& moved,
-                                       const broadphase::CandidateSet& fresh, PairBatch& next);
+/// Replaces, in place, the pairs of `batch` that have a moved cloth vertex (body 0, flags `moved`) by the `fresh`
+/// pairs: the fresh ones take their places (and new places at the end), the places left over are filled from the end.
+/// The other pairs keep their work. Returns the positions of the fresh pairs, vertex-face ones first: their
+/// references, verdicts and results are still to be computed.
+std::vector<std::size_t> replace_moved(PairBatch& batch, const std::vector<std::uint8_t>& moved,
+                                       const broadphase::CandidateSet& fresh);
 
 }  // namespace clothcd::detail
