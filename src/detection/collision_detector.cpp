@@ -170,7 +170,11 @@ struct CollisionDetector::Impl {
   // `only_moved`, the fresh pairs take the places of the last call's pairs with a moved vertex (the others keep their
   // work); otherwise the batch is just the fresh pairs.
   void assemble(bool only_moved) {
-    todo = only_moved ? detail::replace_moved(batch, moved, fresh) : batch.assign(fresh);
+    if (only_moved) {
+      todo = detail::replace_moved(batch, moved, fresh);
+    } else {
+      batch.assign(fresh, todo);
+    }
   }
 
   // Sets and returns the batch's vertex references of the pair at position i.

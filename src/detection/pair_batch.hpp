@@ -21,15 +21,6 @@ namespace clothcd::detail {
 struct BatchPair {
   PairKind kind = PairKind::VertexFace;  ///< Pair kind.
   std::array<std::int32_t, 4> fields{};  ///< The candidate's four fields in declaration order.
-
-  /// The pair of a vertex-face candidate.
-  static BatchPair of(const broadphase::VertexFaceCandidate& c) {
-    return {PairKind::VertexFace, {c.vertex_body, c.vertex, c.face_body, c.face}};
-  }
-  /// The pair of an edge-edge candidate.
-  static BatchPair of(const broadphase::EdgeEdgeCandidate& c) {
-    return {PairKind::EdgeEdge, {c.body_a, c.edge_a, c.body_b, c.edge_b}};
-  }
 };
 
 /// The pairs of a call, in no particular order, and per pair its CCD query (network mode), vertex references, filter
@@ -43,8 +34,8 @@ struct PairBatch {
 
   /// Number of pairs.
   [[nodiscard]] std::size_t size() const { return pairs.size(); }
-  /// Makes the batch exactly `fresh` (vertex-face pairs first) and returns every position, vertex-face ones first.
-  std::vector<std::size_t> assign(const broadphase::CandidateSet& fresh);
+  /// Makes the batch exactly `fresh` (vertex-face pairs first) and sets `all` to every position, in order.
+  void assign(const broadphase::CandidateSet& fresh, std::vector<std::size_t>& all);
 };
 
 /// Sets moved[v] = 1 for the rows of `now` that differ bitwise from those of `before` (same shape), else 0; returns
