@@ -215,6 +215,26 @@ BvhUpdate Bvh::update(const BodyTopology& topology, const SweptBoxes& boxes, con
   }
   check_vertex_boxes(topology, boxes);
   refit(boxes);
+  return rebuild_if_degraded(topology, boxes, start, end);
+}
+
+BvhUpdate Bvh::update_moved(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start,
+                            const Vertices& end, const std::vector<std::uint8_t>& moved) {
+  if (nodes_.empty() || static_cast<int>(face_order_.size()) != topology.face_count() ||
+      settings_.volume == VolumeKind::Obb) {
+    return update(topology, boxes, start, end);
+  }
+  check_vertex_boxes(topology, boxes);
+  if (moved.size() != boxes.vertices.size()) {
+    throw std::invalid_argument("Bvh: " + std::to_string(moved.size()) + " moved flags for " +
+                                std::to_string(boxes.vertices.size()) + " vertices");
+  }
+  refit_moved(boxes, moved);
+  return rebuild_if_degraded(topology, boxes, start, end);
+}
+
+BvhUpdate Bvh::rebuild_if_degraded(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start,
+                                   const Vertices& end) {
   const bool degraded = built_looseness_ > 0 ? looseness_ > settings_.rebuild_ratio * built_looseness_
                                              : settings_.rebuild_ratio <= 0;
   if (degraded) {
@@ -294,29 +314,73 @@ void Bvh::refit(const SweptBoxes& boxes) {
     return;
   }
   // Sphere hierarchies keep their node boxes too: the self-collision search descends on them (see traversal.cpp).
-  std::vector<FlatBox>& node_boxes = boxes_;
-  node_boxes.resize(node_count);
+  boxes_.resize(node_count);
   if (settings_.volume == VolumeKind::Sphere) spheres_.resize(node_count);
-  for (int i = node_count - 1; i >= 0; --i) {
+  for (int i = node_count - 1; i >= 0; --i) fit_node(i);
+  sum_looseness();
+  packed_node_boxes_.assign(boxes_);
+}
+
+void Bvh::refit_moved(const SweptBoxes& boxes, const std::vector<std::uint8_t>& moved) {
+  const FlatBox* vertex_boxes = boxes.vertices.data();
+  const int node_count = static_cast<int>(nodes_.size());
+  std::vector<std::uint8_t> changed(static_cast<std::size_t>(node_count), 0);
+  for (int i = node_count - 1; i >= 0; --i) {  // children follow their parent
     const BvhNode& node = nodes_[i];
-    if (node.is_leaf()) {
-      FlatBox b = empty_flat_box();
-      for (int p = node.face_begin; p < node.face_end; ++p) b.expand(ordered_face_boxes_[p]);
-      node_boxes[i] = b;
-      if (settings_.volume == VolumeKind::Sphere) spheres_[i] = box_sphere(b);
-      continue;
-    }
-    FlatBox b = node_boxes[i + 1];
-    b.expand(node_boxes[node.right]);
-    node_boxes[i] = b;
-    if (settings_.volume == VolumeKind::Sphere) {
-      spheres_[i] = merge_spheres(spheres_[i + 1], spheres_[node.right]);
-      looseness_ += 4.0 * spheres_[i].radius * spheres_[i].radius;
+    if (!node.is_leaf()) {
+      if (!(changed[i + 1] | changed[node.right])) continue;
     } else {
-      looseness_ += box_area(b);
+      bool touched = false;
+      for (int p = 3 * node.face_begin; p < 3 * node.face_end && !touched; ++p) touched = moved[ordered_faces_[p]] != 0;
+      if (!touched) continue;
+      // The leaf's primitives, as refit() derives them (its faces hold every vertex and edge it owns).
+      for (int p = node.face_begin; p < node.face_end; ++p) {
+        const int* f = ordered_faces_.data() + 3 * p;
+        FlatBox b = vertex_boxes[f[0]];
+        b.expand(vertex_boxes[f[1]]);
+        b.expand(vertex_boxes[f[2]]);
+        ordered_face_boxes_[p] = b;
+        packed_face_boxes_.set(p, b);
+      }
+      for (int v = vertex_offset_[node.face_begin]; v < vertex_offset_[node.face_end]; ++v) {
+        ordered_vertex_boxes_[v] = vertex_boxes[owned_vertices_[v]];
+        packed_vertex_boxes_.set(v, ordered_vertex_boxes_[v]);
+      }
+      for (int e = edge_offset_[node.face_begin]; e < edge_offset_[node.face_end]; ++e) {
+        FlatBox b = vertex_boxes[ordered_edges_[2 * e]];
+        b.expand(vertex_boxes[ordered_edges_[2 * e + 1]]);
+        ordered_edge_boxes_[e] = b;
+        packed_edge_boxes_.set(e, b);
+      }
     }
+    changed[i] = 1;
+    fit_node(i);
+    packed_node_boxes_.set(i, boxes_[i]);
   }
-  packed_node_boxes_.assign(node_boxes);
+  sum_looseness();
+}
+
+void Bvh::fit_node(int i) {
+  const BvhNode& node = nodes_[i];
+  FlatBox b = empty_flat_box();
+  if (node.is_leaf()) {
+    for (int p = node.face_begin; p < node.face_end; ++p) b.expand(ordered_face_boxes_[p]);
+  } else {
+    b = boxes_[i + 1];
+    b.expand(boxes_[node.right]);
+  }
+  boxes_[i] = b;
+  if (settings_.volume != VolumeKind::Sphere) return;
+  spheres_[i] = node.is_leaf() ? box_sphere(b) : merge_spheres(spheres_[i + 1], spheres_[node.right]);
+}
+
+void Bvh::sum_looseness() {
+  looseness_ = 0.0;
+  for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {  // the order refit() has always summed in
+    if (nodes_[i].is_leaf()) continue;
+    looseness_ += settings_.volume == VolumeKind::Sphere ? 4.0 * spheres_[i].radius * spheres_[i].radius
+                                                         : box_area(boxes_[i]);
+  }
 }
 
 }  // namespace clothcd::broadphase

@@ -140,10 +140,15 @@ struct CollisionDetector::Impl {
     return detail::find_moved_rows(previous_end, end, moved) * 4 <= static_cast<std::size_t>(end.rows());
   }
 
-  void refit(const Vertices& start, const Vertices& end) {
+  // With `only_moved` (reuse: the obstacles are unchanged and only the `moved` cloth vertices changed since the last
+  // call), the cloth hierarchy refits just what holds them.
+  void refit(const Vertices& start, const Vertices& end, bool only_moved) {
     const double thickness = settings.thickness;
     broadphase::compute_swept_vertex_boxes(start, end, thickness, cloth.boxes);  // the hierarchies need no more
-    if (cloth.bvh.update(cloth.topology, cloth.boxes, start, end) == broadphase::BvhUpdate::Rebuilt) ++stats.rebuilds;
+    const broadphase::BvhUpdate update = only_moved
+                                             ? cloth.bvh.update_moved(cloth.topology, cloth.boxes, start, end, moved)
+                                             : cloth.bvh.update(cloth.topology, cloth.boxes, start, end);
+    if (update == broadphase::BvhUpdate::Rebuilt) ++stats.rebuilds;
     for (Body& o : obstacles) {
       if (!o.stale) continue;
       broadphase::compute_swept_vertex_boxes(o.start, o.end, thickness, o.boxes);
@@ -436,7 +441,7 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
   d.has_previous = false;  // until this call completes
 
   auto t = Clock::now();
-  d.refit(start, end);
+  d.refit(start, end, reuse);
   d.stats.refit_ms = milliseconds_since(t);
 
   t = Clock::now();

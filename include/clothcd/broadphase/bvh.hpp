@@ -3,6 +3,7 @@
 /// A bounding volume hierarchy over the triangles of one body, with AABB, sphere or OBB nodes, built top-down once and
 /// refitted bottom-up every step; it is rebuilt when refitting has made it much looser than when it was built.
 
+#include <cstdint>
 #include <vector>
 
 #include "clothcd/broadphase/body_topology.hpp"
@@ -65,6 +66,12 @@ class Bvh {
   /// `boxes` as build() does.
   BvhUpdate update(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end);
 
+  /// update() when only the vertices flagged in `moved` (one flag per vertex of the body) may have changed their boxes
+  /// since the last build or update: recomputes only the boxes and volumes that contain such a vertex, and gives the
+  /// same hierarchy as update(), bit for bit. OBB hierarchies, and one not built for this topology, take update().
+  BvhUpdate update_moved(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start,
+                         const Vertices& end, const std::vector<std::uint8_t>& moved);
+
   /// Settings in use.
   [[nodiscard]] const BvhSettings& settings() const { return settings_; }
   /// Nodes in pre-order; node 0 is the root. Empty before the first build.
@@ -119,6 +126,11 @@ class Bvh {
  private:
   static void check_vertex_boxes(const BodyTopology& topology, const SweptBoxes& boxes);
   void refit(const SweptBoxes& boxes);
+  void refit_moved(const SweptBoxes& boxes, const std::vector<std::uint8_t>& moved);
+  void fit_node(int i);
+  void sum_looseness();
+  BvhUpdate rebuild_if_degraded(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start,
+                                const Vertices& end);
   void fit_obb_axes(const BodyTopology& topology, const Vertices& start, const Vertices& end);
 
   BvhSettings settings_;

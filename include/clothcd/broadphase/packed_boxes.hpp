@@ -72,6 +72,15 @@ class PackedBoxes {
   /// Replaces the contents with outward-rounded copies of `boxes`.
   void assign(const std::vector<FlatBox>& boxes);
 
+  /// Replaces box j (0 <= j < size()) with an outward-rounded copy of `box`: what assign() would store for it.
+  void set(int j, const FlatBox& box) {
+    const PackedBox p = pack_box(box);
+    for (int k = 0; k < 3; ++k) {
+      rows_[static_cast<std::size_t>(k * stride_ + j)] = p.lo[k];
+      rows_[static_cast<std::size_t>((3 + k) * stride_ + j)] = p.hi[k];
+    }
+  }
+
   /// Number of boxes.
   [[nodiscard]] int size() const { return size_; }
 
