@@ -225,7 +225,8 @@ struct CollisionDetector::Impl {
     for (std::size_t j = first_edge_edge; j < todo.size(); j += lanes) blocks.push_back(j);
     const ccd::ProjectionFilterOptions options{settings.projection_normals};
     const ccd::detail::BlockIsa isa = ccd::detail::fastest_block_isa();
-    const bool nonpenetration = filter == ccd::CcdFilter::Combined;
+    // The non-penetration filter says nothing with a thickness (ccd::nonpenetration_filter_culls is false then).
+    const bool nonpenetration = filter == ccd::CcdFilter::Combined && ccd_settings.thickness == 0.0;
     for_each_index(blocks.size(), settings.parallel, [&](std::size_t b) {
       const std::size_t first = blocks[b];
       const std::size_t segment_end = first < first_edge_edge ? first_edge_edge : todo.size();
