@@ -109,6 +109,81 @@ CLOTHCD_AVX2 Eigen::Index cg_step_avx2(double step, const double* p, const doubl
   return i;
 }
 
+// Loads rows (x, y, z) of a stacked 3n vector at four offsets and returns them as the four x's, y's and z's.
+CLOTHCD_AVX2 void gather_rows(const double* stacked, const int* offsets, __m256d out[3]) {
+  const __m256i first_three = _mm256_set_epi64x(0, -1, -1, -1);
+  __m256d r[4];
+  for (int l = 0; l < 4; ++l) r[l] = _mm256_maskload_pd(stacked + offsets[l], first_three);
+  const __m256d lo01 = _mm256_unpacklo_pd(r[0], r[1]), hi01 = _mm256_unpackhi_pd(r[0], r[1]);
+  const __m256d lo23 = _mm256_unpacklo_pd(r[2], r[3]), hi23 = _mm256_unpackhi_pd(r[2], r[3]);
+  out[0] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+  out[1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+  out[2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+}
+
+// (a0 b0 + a1 b1) + a2 b2, the order of Eigen's 3-vector dot product and squared norm.
+CLOTHCD_AVX2 __m256d dot3(const __m256d a[3], const __m256d b[3]) {
+  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a[0], b[0]), _mm256_mul_pd(a[1], b[1])), _mm256_mul_pd(a[2], b[2]));
+}
+
+// The per-spring linearisation of predict_velocities for springs [0, 4 floor(count / 4)), four at a time: the same
+// operations in the same order as its scalar loop (the Eigen expressions there), blocks written per field, and rhs and
+// diagonal updated spring by spring in order, so the result is bit for bit the scalar one. `rest` and `stiffness`
+// hold each spring's rest length and k. Returns the number of springs done.
+CLOTHCD_AVX2 std::size_t linearise_springs_avx2(const double* x, const double* v, const double* rest,
+                                                const double* stiffness, double h, double damping, std::size_t count,
+                                                double* n0, double* n1, double* n2, double* alpha, double* beta,
+                                                const int* a3s, const int* b3s, double* rhs, double* diagonal) {
+  const std::size_t whole = count / 4 * 4;
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), hv = _mm256_set1_pd(h);
+  const __m256d hh = _mm256_set1_pd(h * h), hd = _mm256_set1_pd(h * damping), kd = _mm256_set1_pd(damping);
+  const __m256d tiny = _mm256_set1_pd(1e-12), sign = _mm256_set1_pd(-0.0);
+  alignas(32) double contribution[3][4], block_diagonal[3][4], valid[4];
+  for (std::size_t s = 0; s < whole; s += 4) {
+    __m256d xa[3], xb[3], va[3], vb[3], d[3], n[3], dv[3];
+    gather_rows(x, a3s + s, xa);
+    gather_rows(x, b3s + s, xb);
+    for (int c = 0; c < 3; ++c) d[c] = _mm256_sub_pd(xa[c], xb[c]);
+    const __m256d length = _mm256_sqrt_pd(dot3(d, d));
+    const __m256d ok = _mm256_cmp_pd(length, tiny, _CMP_GT_OQ);  // length > 1e-12 (false for NaN)
+    for (int c = 0; c < 3; ++c) n[c] = _mm256_div_pd(d[c], length);
+    const __m256d r = _mm256_loadu_pd(rest + s), k = _mm256_loadu_pd(stiffness + s);
+    const __m256d t = _mm256_sub_pd(one, _mm256_div_pd(r, length));
+    const __m256d transverse = _mm256_blendv_pd(zero, t, _mm256_cmp_pd(zero, t, _CMP_LT_OQ));  // std::max(0.0, t)
+    gather_rows(v, a3s + s, va);
+    gather_rows(v, b3s + s, vb);
+    for (int c = 0; c < 3; ++c) dv[c] = _mm256_sub_pd(va[c], vb[c]);
+    const __m256d along = dot3(dv, n);
+    const __m256d scale = _mm256_sub_pd(_mm256_mul_pd(_mm256_xor_pd(k, sign), _mm256_sub_pd(length, r)),
+                                        _mm256_mul_pd(kd, along));
+    const __m256d c1 = _mm256_mul_pd(_mm256_sub_pd(one, transverse), along);
+    const __m256d b = _mm256_mul_pd(_mm256_mul_pd(hh, k), transverse);
+    const __m256d a = _mm256_sub_pd(_mm256_add_pd(_mm256_mul_pd(hh, k), hd), b);
+    for (int c = 0; c < 3; ++c) {
+      const __m256d force = _mm256_mul_pd(scale, n[c]);
+      const __m256d kv = _mm256_mul_pd(k, _mm256_add_pd(_mm256_mul_pd(c1, n[c]), _mm256_mul_pd(transverse, dv[c])));
+      _mm256_store_pd(contribution[c], _mm256_sub_pd(_mm256_mul_pd(hv, force), _mm256_mul_pd(hh, kv)));
+      _mm256_store_pd(block_diagonal[c], _mm256_add_pd(_mm256_mul_pd(a, _mm256_mul_pd(n[c], n[c])), b));
+    }
+    // Degenerate springs keep n = (1, 0, 0), alpha = beta = 0 and add nothing.
+    _mm256_storeu_pd(n0 + s, _mm256_blendv_pd(one, n[0], ok));
+    _mm256_storeu_pd(n1 + s, _mm256_blendv_pd(zero, n[1], ok));
+    _mm256_storeu_pd(n2 + s, _mm256_blendv_pd(zero, n[2], ok));
+    _mm256_storeu_pd(alpha + s, _mm256_blendv_pd(zero, a, ok));
+    _mm256_storeu_pd(beta + s, _mm256_blendv_pd(zero, b, ok));
+    _mm256_store_pd(valid, ok);
+    for (int l = 0; l < 4; ++l) {
+      if (valid[l] == 0.0) continue;  // an all-zero lane of the mask (an all-ones lane is a NaN, never == 0)
+      const int a3 = a3s[s + l], b3 = b3s[s + l];
+      for (int c = 0; c < 3; ++c) rhs[a3 + c] += contribution[c][l];
+      for (int c = 0; c < 3; ++c) rhs[b3 + c] -= contribution[c][l];
+      for (int c = 0; c < 3; ++c) diagonal[a3 + c] += block_diagonal[c][l];
+      for (int c = 0; c < 3; ++c) diagonal[b3 + c] += block_diagonal[c][l];
+    }
+  }
+  return whole;
+}
+
 // The CG's new search direction p = z + c p on [0, 4 floor(n / 4)), four at a time; returns the count done.
 CLOTHCD_AVX2 Eigen::Index cg_direction_avx2(double c, const double* z, double* p, Eigen::Index n) {
   const __m256d cs = _mm256_set1_pd(c);
@@ -167,18 +242,34 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
   diagonal_ = mass_diagonal_;
 
   const std::size_t springs = model.springs.size();
-  for (std::vector<double>* field : {&blocks_.n0, &blocks_.n1, &blocks_.n2, &blocks_.alpha, &blocks_.beta}) {
+  for (std::vector<double>* field : {&blocks_.n0, &blocks_.n1, &blocks_.n2, &blocks_.alpha, &blocks_.beta,
+                                     &blocks_.rest, &blocks_.stiffness}) {
     field->resize(springs);
   }
   blocks_.a3.resize(springs);
   blocks_.b3.resize(springs);
   for (size_t s = 0; s < springs; ++s) {
     const Spring& spring = model.springs[s];
-    const Eigen::Vector3d d = x.segment<3>(3 * spring.a) - x.segment<3>(3 * spring.b);
-    const double length = d.norm();
-    const double k = stiffness_of(cs, spring.kind);
     blocks_.a3[s] = 3 * spring.a;
     blocks_.b3[s] = 3 * spring.b;
+    blocks_.rest[s] = spring.rest_length;
+    blocks_.stiffness[s] = stiffness_of(cs, spring.kind);
+  }
+  std::size_t linearised = 0;
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (avx2_supported()) {
+    linearised = linearise_springs_avx2(state.positions.data(), state.velocities.data(), blocks_.rest.data(),
+                                        blocks_.stiffness.data(), h, cs.spring_damping, springs, blocks_.n0.data(),
+                                        blocks_.n1.data(), blocks_.n2.data(), blocks_.alpha.data(),
+                                        blocks_.beta.data(), blocks_.a3.data(), blocks_.b3.data(), rhs_.data(),
+                                        diagonal_.data());
+  }
+#endif
+  for (size_t s = linearised; s < springs; ++s) {
+    const Spring& spring = model.springs[s];
+    const Eigen::Vector3d d = x.segment<3>(3 * spring.a) - x.segment<3>(3 * spring.b);
+    const double length = d.norm();
+    const double k = blocks_.stiffness[s];
     double alpha = 0.0, beta = 0.0;
     Eigen::Vector3d n = Eigen::Vector3d::UnitX();
     if (length > 1e-12) {

@@ -47,6 +47,7 @@ class ImplicitIntegrator {
     std::vector<double> alpha, beta;
     std::vector<int> a3;  ///< 3 a: offset of the spring's first vertex in a stacked 3n vector.
     std::vector<int> b3;  ///< 3 b: the same for its second vertex.
+    std::vector<double> rest, stiffness;  ///< Each spring's rest length and stiffness k (inputs of the linearisation).
   };
   void multiply(const ClothModel& model, const Eigen::VectorXd& p, Eigen::VectorXd& out) const;
 
