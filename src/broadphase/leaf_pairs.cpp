@@ -157,6 +157,19 @@ int collect_packed(int begin, int end, std::vector<int>& out, const Bits& bits, 
   return n;
 }
 
+// The part of `range` from the first to the last position whose packed box may overlap `q` (empty when none may).
+template <class Lanes>
+Range near_span(const PackedBoxes& boxes, Range range, const PackedBox& q) {
+  int first = range.end, last = range.begin - 1;
+  for (int j = range.begin; j < range.end; j += Lanes::kWidth) {
+    const unsigned bits = Lanes::below(Lanes::overlap(boxes, j, q), j, range.end);
+    if (bits == 0) continue;
+    if (first == range.end) first = j + __builtin_ctz(bits);
+    last = j + 31 - __builtin_clz(bits);
+  }
+  return first == range.end ? Range{range.end, range.end} : Range{first, last + 1};
+}
+
 // Pairs each selected primitive i of a first set (scratch.selected[0..selected), positions in its tree-ordered arrays)
 // with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes Lanes::kWidth at a
 // time, minus the lanes whose bits excluded_for(i)(j) sets (pairs that must not be produced), then the
@@ -206,7 +219,8 @@ void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const s
     const int* f = ta.ordered_faces().data() + 3 * p;
     return moved[f[0]] != 0 || moved[f[1]] != 0 || moved[f[2]] != 0;
   };
-  auto vertices_against_faces = [&](const BodyView& vertex_body, const BvhNode& vertex_leaf, const BodyView& face_body,
+  auto vertices_against_faces = [&](const BodyView& vertex_body, const BvhNode& vertex_leaf,
+                                    const PackedBox& vertex_leaf_box, const BodyView& face_body,
                                     const BvhNode& face_leaf, const PackedBox& face_leaf_box) {
     const Bvh& tv = *vertex_body.bvh;
     const Bvh& tf = *face_body.bvh;
@@ -216,16 +230,20 @@ void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const s
     const Range vr = vertex_range(tv, vertex_leaf);
     const int selected = select_packed<Lanes>(tv.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
     stats.primitive_tests += (vr.end - vr.begin);
+    if (selected == 0) return;
+    const Range faces = near_span<Lanes>(tf.packed_face_boxes(), Range{face_leaf.face_begin, face_leaf.face_end},
+                                         vertex_leaf_box);
+    stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
     stats.primitive_tests += pair_selected<Lanes>(
         tv.packed_vertex_boxes(), vertex_boxes, tf.packed_face_boxes(), face_boxes, selected, scratch,
-        [&](int) { return Range{face_leaf.face_begin, face_leaf.face_end}; }, exclude_none, [&](int i, int p) {
+        [&](int) { return faces; }, exclude_none, [&](int i, int p) {
           if (wanted(vertex_in_a, i, p)) {
             out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
           }
         });
   };
-  vertices_against_faces(a, la, b, lb, box_b);
-  vertices_against_faces(b, lb, a, la, box_a);
+  vertices_against_faces(a, la, box_a, b, lb, box_b);
+  vertices_against_faces(b, lb, box_b, a, la, box_a);
   const Range ea = edge_range(ta, la), eb = edge_range(tb, lb);
   const int* edges_a = ta.ordered_edges().data();
   const FlatBox* edge_boxes_a = ta.ordered_edge_boxes().data();
@@ -241,9 +259,12 @@ void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const s
     selected = kept;
   }
   stats.primitive_tests += (ea.end - ea.begin);
+  if (selected == 0) return;
+  const Range near_b = near_span<Lanes>(tb.packed_edge_boxes(), eb, box_a);
+  stats.primitive_tests += (eb.end - eb.begin);
   stats.primitive_tests += pair_selected<Lanes>(
       ta.packed_edge_boxes(), edge_boxes_a, tb.packed_edge_boxes(), edge_boxes_b, selected, scratch,
-      [&](int) { return eb; }, exclude_none,
+      [&](int) { return near_b; }, exclude_none,
       [&](int i, int j) { out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]}); });
 }
 
@@ -262,14 +283,19 @@ void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* move
   const FlatBox* vertex_boxes = t.ordered_vertex_boxes().data();
   const FlatBox* face_boxes = t.ordered_face_boxes().data();
   const FlatBox* edge_boxes = t.ordered_edge_boxes().data();
-  auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const BvhNode& face_leaf,
-                                    const PackedBox& face_leaf_box) {
+  // Between two leaves, only the span of the face leaf's faces that may touch the vertex leaf's box is read.
+  auto vertices_against_faces = [&](const BvhNode& vertex_leaf, const PackedBox& vertex_leaf_box,
+                                    const BvhNode& face_leaf, const PackedBox& face_leaf_box) {
     const Range vr = vertex_range(t, vertex_leaf);
     const int selected = select_packed<Lanes>(t.packed_vertex_boxes(), vr.begin, vr.end, face_leaf_box, scratch.selected);
     stats.primitive_tests += (vr.end - vr.begin);
+    if (selected == 0) return;
+    const Range all_faces{face_leaf.face_begin, face_leaf.face_end};
+    const Range near_faces = same ? all_faces : near_span<Lanes>(t.packed_face_boxes(), all_faces, vertex_leaf_box);
+    stats.primitive_tests += same ? 0 : all_faces.end - all_faces.begin;
     stats.primitive_tests += pair_selected<Lanes>(
         t.packed_vertex_boxes(), vertex_boxes, t.packed_face_boxes(), face_boxes, selected, scratch,
-        [&](int) { return Range{face_leaf.face_begin, face_leaf.face_end}; },
+        [&](int) { return near_faces; },
         [&](int i) {
           const int v = t.owned_vertices()[i];
           return [&ids = t.packed_faces(), v](int p) { return Lanes::face_uses(ids, p, v); };
@@ -283,11 +309,14 @@ void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* move
         });
   };
   const PackedBox box_a = packed_leaf_box(t, na), box_b = packed_leaf_box(t, nb);
-  vertices_against_faces(la, lb, box_b);
-  if (!same) vertices_against_faces(lb, la, box_a);
-  const Range ea = edge_range(t, la), eb = edge_range(t, lb);
+  vertices_against_faces(la, box_a, lb, box_b);
+  if (!same) vertices_against_faces(lb, box_b, la, box_a);
+  const Range ea = edge_range(t, la);
   const int selected = select_packed<Lanes>(t.packed_edge_boxes(), ea.begin, ea.end, box_b, scratch.selected);
   stats.primitive_tests += ea.end - ea.begin;
+  if (selected == 0) return;
+  const Range eb = same ? ea : near_span<Lanes>(t.packed_edge_boxes(), edge_range(t, lb), box_a);
+  stats.primitive_tests += same ? 0 : edge_range(t, lb).end - edge_range(t, lb).begin;
   stats.primitive_tests += pair_selected<Lanes>(
       t.packed_edge_boxes(), edge_boxes, t.packed_edge_boxes(), edge_boxes, selected, scratch,
       [&](int i) { return Range{same ? i + 1 : eb.begin, eb.end}; },

@@ -1,7 +1,8 @@
 #pragma once
 // The primitive tests of one pair of overlapping leaves (internal to the broad phase): vertices against faces and
 // edges against edges by their swept boxes, producing candidate pairs. Each primitive is first pre-selected against
-// the other leaf's box, then tested against the other leaf's primitives four (or, with AVX2, eight) at a time on
+// the other leaf's box, then tested against the other leaf's primitives (of two different leaves, only the span of
+// them from the first to the last that may touch the first leaf's box) four (or, with AVX2, eight) at a time on
 // packed single-precision boxes (and, within one body, packed vertex indices to skip pairs that share a vertex); the
 // few passes are confirmed on the double-precision boxes, so the output is exactly that of the box tests.
 
