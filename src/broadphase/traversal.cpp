@@ -120,11 +120,12 @@ void step(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8
   if (na.is_leaf() && nb.is_leaf()) {
     on_leaves(task);
   } else if (nb.is_leaf() || (!na.is_leaf() && face_count(ta, task.a) >= face_count(tb, task.b))) {
-    push_if_overlapping(task.a + 1, task.b);
+    // The right child is pushed first, so the left one is taken first: leaves are visited in memory order.
     push_if_overlapping(na.right, task.b);
+    push_if_overlapping(task.a + 1, task.b);
   } else {
-    push_if_overlapping(task.a, task.b + 1);
     push_if_overlapping(task.a, nb.right);
+    push_if_overlapping(task.a, task.b + 1);
   }
 }
 
