@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ccd/projection_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
 namespace clothcd::ccd {
@@ -123,6 +124,34 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings)
   return projection_filter_culls(query, settings, ProjectionFilterOptions{});
 }
 
+namespace detail {
+
+bool separated_in_plane(const CcdQuery& query, const CcdSettings& settings) {
+  if (!usable_thickness(settings)) return false;
+  auto separates = [&](const Eigen::Vector3d& s) {
+    const double squared_norm = s.squaredNorm();
+    if (!s.allFinite() || squared_norm == 0.0) return false;
+    const double norm = settings.thickness > 0.0 ? std::sqrt(squared_norm) : 0.0;
+    return separated_along(query, s, threshold_for(settings.thickness, norm));
+  };
+  for (const auto* positions : {&query.start, &query.end}) {
+    const auto& x = *positions;
+    if (query.kind == PairKind::VertexFace) {
+      const Eigen::Vector3d n = (x[2] - x[1]).cross(x[3] - x[1]);
+      if (separates(n.cross(x[2] - x[1])) || separates(n.cross(x[3] - x[2])) || separates(n.cross(x[1] - x[3]))) {
+        return true;
+      }
+    } else {
+      // Perpendicular to each edge, in the plane of that edge and the line joining the edges' midpoints.
+      const Eigen::Vector3d a = x[1] - x[0], b = x[3] - x[2], w = (x[2] + x[3]) - (x[0] + x[1]);
+      if (separates(a.cross(a.cross(w))) || separates(b.cross(b.cross(w)))) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace detail
+
 bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
                              const ProjectionFilterOptions& options) {
   if (!usable_thickness(settings)) return false;
@@ -147,7 +176,7 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
   }
   for (const Direction& d : kDirections)
     if (separated_along(query, d.s, threshold_for(settings.thickness, d.norm))) return true;
-  return false;
+  return options.use_primitive_normals && detail::separated_in_plane(query, settings);
 }
 
 bool combined_filters_cull(const CcdQuery& query, const CcdSettings& settings) {

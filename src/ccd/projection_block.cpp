@@ -129,6 +129,15 @@ __attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, doubl
 }
 #endif
 
+// True when every coordinate of the lane's pair is at most kLargest in magnitude (the block filter culls no other).
+bool within_range(const QueryBlock& b, int lane) {
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (!(std::abs(b.x[t][k][c][lane]) <= kLargest)) return false;
+  return true;
+}
+
 }  // namespace
 
 void QueryBlock::set(int lane, const CcdQuery& query) {
@@ -172,10 +181,22 @@ void projection_filter_block(const QueryBlock& block, const CcdSettings& setting
                              const ProjectionFilterOptions& options, std::uint8_t* culled, BlockIsa isa) {
   const bool normals = options.use_primitive_normals;
 #if defined(CLOTHCD_AVX2_PATHS)
-  if (isa == BlockIsa::Avx512) return filter_avx512(block, settings.thickness, normals, culled);
-  if (isa == BlockIsa::Avx2) return filter_avx2(block, settings.thickness, normals, culled);
-#endif
+  if (isa == BlockIsa::Avx512) {
+    filter_avx512(block, settings.thickness, normals, culled);
+  } else if (isa == BlockIsa::Avx2) {
+    filter_avx2(block, settings.thickness, normals, culled);
+  } else {
+    filter_baseline(block, settings.thickness, normals, culled);
+  }
+#else
   filter_baseline(block, settings.thickness, normals, culled);
+#endif
+  if (!normals) return;
+  // The in-plane directions cost more per pair and are needed by few: they run on the survivors only, one at a time.
+  for (int lane = 0; lane < block.count; ++lane) {
+    if (culled[lane] || !within_range(block, lane)) continue;
+    culled[lane] = separated_in_plane(block.query(lane), settings) ? 1 : 0;
+  }
 }
 
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,

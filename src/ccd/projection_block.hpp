@@ -38,6 +38,10 @@ enum class BlockIsa {
 /// The widest instruction set this CPU runs.
 [[nodiscard]] BlockIsa fastest_block_isa();
 
+/// The in-plane directions of ProjectionFilterOptions::use_primitive_normals on one pair (the last directions the
+/// filter tries): true when one of them separates the primitives by more than the thickness over the whole step.
+[[nodiscard]] bool separated_in_plane(const CcdQuery& query, const CcdSettings& settings);
+
 /// culled[i] = 1 for each lane i < block.count that the projection filter culls, 0 otherwise. The same test as
 /// projection_filter_culls(query, settings, options) with a coarser rounding bound (16 u |s|_1 max|coordinate| per
 /// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only

@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "ccd/projection_block.hpp"
 #include "ccd/sampled_distance.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
@@ -72,4 +73,42 @@ TEST_CASE("the projection filter with primitive normals never drops a pair withi
   }
   CHECK(dropped > 500);  // the test sees the normals at work
   CHECK(within > 20);
+}
+
+TEST_CASE("the in-plane directions separate neighbours in a flat sheet and never drop a pair within the thickness",
+          "[detection][filters]") {
+  // Pairs lying in one random plane (up to a small offset) and moving with it: no normal separates them, and the
+  // fixed directions only when they are far apart along one of them. The in-plane edge normals do.
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto random_vector = [&](double size) -> Vector3d { return Vector3d(unit(rng), unit(rng), unit(rng)) * size; };
+  const double thickness = 0.004;
+  const ccd::CcdSettings settings{thickness};
+  int in_plane = 0, within = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vector3d normal = random_vector(1.0).normalized();
+    const Vector3d tangent = normal.unitOrthogonal(), bitangent = normal.cross(tangent);
+    const Vector3d origin = random_vector(1.0);
+    auto in_plane_point = [&](double size) {
+      return Vector3d(origin + size * (unit(rng) * tangent + unit(rng) * bitangent) + 0.001 * unit(rng) * normal);
+    };
+    ccd::CcdQuery q;
+    q.kind = i % 2 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    for (int k = 0; k < 4; ++k) q.start[k] = in_plane_point(0.04);
+    const Vector3d fall = random_vector(0.01);
+    for (int k = 0; k < 4; ++k) q.end[k] = q.start[k] + fall + random_vector(0.0005);
+    const bool culled = ccd::projection_filter_culls(q, settings, ccd::ProjectionFilterOptions{true});
+    INFO("pair " << i);
+    if (culled) CHECK(ccd::continuous_collision(q, settings).state != ccd::CcdState::Hit);
+    if (clothcd::test::sampled_min_distance(q, 20, 24) <= thickness) {
+      ++within;
+      CHECK_FALSE(culled);
+    }
+    if (ccd::detail::separated_in_plane(q, settings)) {
+      ++in_plane;
+      CHECK(culled);
+    }
+  }
+  CHECK(in_plane > 500);  // the test sees the in-plane directions at work
+  CHECK(within > 100);
 }

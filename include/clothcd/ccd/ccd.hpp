@@ -66,8 +66,10 @@ struct CcdResult {
 
 /// Extra options of the projection filter.
 struct ProjectionFilterOptions {
-  /// Also project onto directions derived from the primitives (face normal or edge cross product at t = 0 and t = 1),
-  /// in addition to the paper's five fixed directions of eq. (10).
+  /// Also project onto directions derived from the primitives, in addition to the paper's five fixed directions of
+  /// eq. (10): the face normal or the edges' cross product at t = 0 and t = 1, then, for a pair none of those
+  /// separates, the in-plane normals (at t = 0, then t = 1) of the face's three edges (vertex-face) or of each edge
+  /// towards the other (edge-edge), which separate neighbouring primitives of a flat sheet.
   bool use_primitive_normals = false;
 };
 
