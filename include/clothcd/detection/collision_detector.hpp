@@ -46,8 +46,9 @@ struct DetectorSettings {
   /// changed, and keep the previous answer for the others (it cannot differ). Not used with CullingMode::Network.
   bool reuse_unchanged = true;
   /// Projection and Filters modes: also project onto the primitives' own directions (face normal, edge cross product)
-  /// at the start and end of the step, tried before the paper's five fixed directions (ccd::ProjectionFilterOptions).
-  /// Culls far more of a cloth resting on a surface at the thickness; false gives the paper's filter exactly.
+  /// at the start and end of the step, tried before the paper's five fixed directions, and, for pairs none of those
+  /// separates, the in-plane normals of their edges (ccd::ProjectionFilterOptions). Culls far more of a cloth resting
+  /// on a surface at the thickness, and the neighbouring pairs of a flat sheet; false gives the paper's filter exactly.
   bool projection_normals = true;
   /// Thickness 0: decide the pairs interval arithmetic leaves undecided exactly instead of reporting them as
   /// conservative hits (ccd::CcdSettings::decide_exactly).
