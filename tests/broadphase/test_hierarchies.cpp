@@ -56,7 +56,7 @@ TriangleMesh draped_cloth(int n) {
 TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[broadphase][brute-force]") {
   const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
                               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
-  const int leaf = GENERATE(1, 3, 16);  // 16: leaves span several four-wide groups of the packed tests
+  const int leaf = GENERATE(1, 3, 16, 32);  // 16, 32 (the default): leaves span several groups of the packed tests
   const bool parallel = GENERATE(false, true);
   const bool wide = GENERATE(false, true);  // eight-lane leaf tests where the CPU has them, else four
   const int seed = GENERATE(1, 2, 3);
