@@ -46,7 +46,8 @@ enum class BlockIsa {
 /// projection_filter_culls(query, settings, options) with a coarser rounding bound (16 u |s|_1 max|coordinate| per
 /// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only
 /// when, along one direction s, every point of one primitive lies more than thickness |s| beyond every point of the
-/// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled.
+/// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled. With primitive
+/// normals, the lanes that survive the block's directions go through separated_in_plane, one at a time.
 /// `isa` must be one of supported_block_isas().
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled,
