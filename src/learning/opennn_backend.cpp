@@ -6,6 +6,7 @@
 #include "learning/opennn_backend.hpp"
 
 #include "clothcd/learning/pair_classifier.hpp"
+#include "learning/model_file_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,7 @@ void check_data(const OpennnData& data) {
 }  // namespace
 
 OpennnNetwork OpennnNetwork::load(const std::string& path) {
+  check_model_file_shape(path);
   OpennnNetwork result;
   try {
     result.impl_->network.set_display(false);
@@ -296,6 +298,7 @@ void check_structure(const tinyxml2::XMLElement* root, const std::string& path) 
 }  // namespace
 
 NetworkWeights read_network_weights(const std::string& path) {
+  check_model_file_shape(path);
   tinyxml2::XMLDocument document;
   const tinyxml2::XMLError status = document.LoadFile(path.c_str());
   if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED)

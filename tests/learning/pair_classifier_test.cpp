@@ -239,6 +239,16 @@ TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
     return text.substr(0, 40);
   });
   CHECK_THROWS_WITH(PairClassifier::load(broken_card), Catch::Contains("card.json") && Catch::Contains("malformed"));
+
+  // 100,000 nested elements inside the model: the XML parser would recurse once per level and overflow the stack.
+  const std::string deep = edited_model("deep", "network.xml", [](const std::string& text) {
+    std::string nest;
+    for (int i = 0; i < 100000; ++i) nest += "<a>";
+    for (int i = 0; i < 100000; ++i) nest += "</a>";
+    const std::size_t at = text.find("<Inputs>");
+    return text.substr(0, at) + nest + text.substr(at);
+  });
+  CHECK_THROWS_WITH(PairClassifier::load(deep), Catch::Contains("network.xml") && Catch::Contains("nested"));
 }
 
 namespace {
