@@ -1,4 +1,5 @@
-// Minimal raster line chart: Bresenham lines on an RGB buffer, tick labels from a 3x5 pixel font, PNG via stb.
+// Minimal raster line chart: Bresenham lines on an RGB buffer, tick labels from a 3x5 pixel font, PNG via
+// render::write_png.
 #include "learning/line_chart.hpp"
 
 #include <algorithm>
@@ -7,9 +8,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb_image_write.h>
+#include "clothcd/render/image.hpp"
 
 namespace clothcd::learning {
 namespace {
@@ -56,8 +55,9 @@ class Canvas {
     }
   }
   void save(const std::string& path) const {
-    if (!stbi_write_png(path.c_str(), width_, height_, 3, pixels_.data(), width_ * 3))
-      throw std::runtime_error(path + ": cannot write the PNG chart");
+    render::Image image(width_, height_);
+    image.rgb = pixels_;
+    render::write_png(image, path);
   }
 
  private:

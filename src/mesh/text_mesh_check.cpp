@@ -191,4 +191,25 @@ void check_obj_numbers(const std::filesystem::path& path) {
   }
 }
 
+std::vector<long long> obj_face_vertices(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<long long> corners;
+  std::string line;
+  long long vertices = 0;
+  while (std::getline(in, line)) {
+    if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
+    if (line[0] == 'v') ++vertices;
+    if (line[0] != 'f') continue;
+    std::istringstream words(line.substr(1));
+    for (std::string token; words >> token;) {
+      const std::string number = token.substr(0, token.find('/'));
+      char* end = nullptr;
+      long long value = std::strtoll(number.c_str(), &end, 10);
+      if (number.empty() || end != number.c_str() + number.size()) value = 0;
+      corners.push_back(value < 0 ? vertices + 1 + value : value);
+    }
+  }
+  return corners;
+}
+
 }  // namespace clothcd::detail

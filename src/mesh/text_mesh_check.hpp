@@ -5,6 +5,7 @@
 // Run before assimp reads the file. Internal.
 
 #include <filesystem>
+#include <vector>
 
 namespace clothcd::detail {
 
@@ -19,6 +20,10 @@ void check_off_body(const std::filesystem::path& path);
 /// 20 or more integer digits, or a binary body is shorter than the header allows (assimp's binary reader allocates the
 /// declared count first: 2e9 vertices in a 300-byte file took gigabytes). Other files pass.
 void check_ply_body(const std::filesystem::path& path);
+
+/// For an OBJ file: the vertex number of every corner of every `f` line, in file order (1-based as written; a
+/// negative, relative number is resolved against the vertices read so far; 0 where a corner holds no number).
+[[nodiscard]] std::vector<long long> obj_face_vertices(const std::filesystem::path& path);
 
 /// For an OBJ file: throws MeshError naming the file and vertex when a vertex coordinate has 20 or more integer digits
 /// (assimp's readers, here and in OFF and ASCII PLY, read such numbers as 0). Call only for OBJ files.

@@ -1,6 +1,7 @@
 // PNG output through stb_image_write (public domain, Debian libstb-dev). Its implementation is compiled here, static to
 // this file, so no other translation unit or library can clash with it.
 #include <algorithm>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
@@ -30,9 +31,18 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   if (image.width <= 0 || image.height <= 0 || image.rgb.size() != static_cast<size_t>(image.width) * image.height * 3) {
     throw std::runtime_error(path.string() + ": cannot write an empty or malformed image");
   }
-  if (stbi_write_png(path.string().c_str(), image.width, image.height, 3, image.rgb.data(), image.width * 3) == 0) {
-    throw std::runtime_error(path.string() + ": cannot write PNG");
+  // Encoded in memory and written here, so that a failed write (a full disk) is an error: stb's own file writer
+  // reports only a failure to open the file.
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::ofstream*>(context)->write(static_cast<const char*>(data), size);
+  };
+  if (stbi_write_png_to_func(append, &out, image.width, image.height, 3, image.rgb.data(), image.width * 3) == 0) {
+    throw std::runtime_error(path.string() + ": cannot encode PNG");
   }
+  out.close();
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
 Image contact_sheet(const std::vector<Image>& images, int columns, int gap) {

@@ -95,3 +95,24 @@ TEST_CASE("clothcd detect names each copy of a face listed twice", "[detection][
   CHECK_THAT(out, Catch::Contains("\"vertex_face\": 2"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("clothcd detect refuses OBJ frames whose faces differ and output it cannot write", "[detection][cli]") {
+  const fs::path dir = fs::temp_directory_path() / "clothcd_detect_cli_frames_test";
+  fs::create_directories(dir);
+  // The OBJ reader gives one vertex per face corner, so faces that name other vertices (here the second triangle's
+  // winding reversed) looked like the same mesh with moved vertices and gave made-up collisions.
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+  std::ofstream(dir / "t0.obj") << vertices << "f 1 2 3\nf 2 4 3\n";
+  std::ofstream(dir / "reversed.obj") << vertices << "f 1 2 3\nf 3 4 2\n";
+  std::ofstream(dir / "relative.obj") << vertices << "f -4 -3 -2\nf -3 -1 -2\n";  // the same faces, counted back
+  CHECK(run("detect " + (dir / "t0.obj").string() + " " + (dir / "reversed.obj").string(), dir / "log.txt") != 0);
+  CHECK_THAT(read(dir / "log.txt"), Catch::Contains("faces differ"));
+  CHECK(run("detect " + (dir / "t0.obj").string() + " " + (dir / "relative.obj").string(), dir / "log.txt") == 0);
+  CHECK_THAT(read(dir / "log.txt"), Catch::Contains("collisions:  0 vertex-face, 0 edge-edge"));
+  if (fs::exists("/dev/full")) {  // every write to it fails (Linux)
+    CHECK(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t0.obj").string() + " --out /dev/full",
+              dir / "log.txt") != 0);
+    CHECK_THAT(read(dir / "log.txt"), Catch::Contains("write failed"));
+  }
+  fs::remove_all(dir);
+}

@@ -11,8 +11,7 @@
 #include <string>
 
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/mesh/mesh_error.hpp"
-#include "clothcd/mesh/mesh_io.hpp"
+#include "clothcd/mesh/mesh_frames.hpp"
 #include "commands.hpp"
 
 namespace clothcd::cli {
@@ -28,43 +27,6 @@ struct DetectOptions {
   std::string model;
   std::string out;
 };
-
-void check_same_faces(const TriangleMesh& t0, const TriangleMesh& t1, const DetectOptions& o) {
-  if (t0.vertex_count() != t1.vertex_count()) {
-    throw MeshError(o.t1_path, "has " + std::to_string(t1.vertex_count()) + " vertices but " + o.t0_path + " has " +
-                                   std::to_string(t0.vertex_count()) + " (both frames need the same vertex numbering)");
-  }
-  if (t0.faces.rows() != t1.faces.rows() || t0.faces != t1.faces) {
-    throw MeshError(o.t1_path, "its faces differ from those of " + o.t0_path + " (both frames need the same faces)");
-  }
-}
-
-// The loader gives one vertex per face corner for formats such as OBJ; corners at bit-identical positions in both frames
-// are one vertex. Welding by the pair of positions (not by either frame alone) keeps both frames' numbering equal.
-// Vertices are numbered in order of first appearance, as load_mesh's own joining does.
-void weld_frames(TriangleMesh& t0, TriangleMesh& t1) {
-  std::map<std::array<double, 6>, int> index_of;
-  std::vector<int> remap(static_cast<std::size_t>(t0.vertex_count()));
-  Vertices p0(t0.vertex_count(), 3), p1(t0.vertex_count(), 3);
-  int next = 0;
-  for (Eigen::Index v = 0; v < t0.vertex_count(); ++v) {
-    const std::array<double, 6> key = {t0.vertices(v, 0), t0.vertices(v, 1), t0.vertices(v, 2),
-                                       t1.vertices(v, 0), t1.vertices(v, 1), t1.vertices(v, 2)};
-    const auto [it, inserted] = index_of.emplace(key, next);
-    if (inserted) {
-      p0.row(next) = t0.vertices.row(v);
-      p1.row(next) = t1.vertices.row(v);
-      ++next;
-    }
-    remap[v] = it->second;
-  }
-  p0.conservativeResize(next, 3);
-  p1.conservativeResize(next, 3);
-  for (Eigen::Index i = 0; i < t0.faces.size(); ++i) t0.faces.data()[i] = remap[t0.faces.data()[i]];
-  t0.vertices = std::move(p0);
-  t1.vertices = std::move(p1);
-  t1.faces = t0.faces;
-}
 
 // The face index of each vertex-face collision (collisions name the face by its three vertices): a face listed
 // several times in the mesh is several faces with the same vertices, named in turn for each vertex that hits them.
@@ -144,18 +106,12 @@ void run_detect(const DetectOptions& o) {
   settings.decide_exactly = o.exact;
 
   const auto t = std::chrono::steady_clock::now();
-  // Keep every vertex and face as stored so that both frames keep the same numbering, then weld the two together.
-  LoadOptions load;
-  load.join_identical_vertices = false;
-  load.drop_degenerate_faces = false;
-  TriangleMesh t0 = load_mesh(o.t0_path, load);
-  TriangleMesh t1 = load_mesh(o.t1_path, load);
-  check_same_faces(t0, t1, o);
-  weld_frames(t0, t1);
+  const MeshFrames frames = load_mesh_frames(o.t0_path, o.t1_path);
+  const TriangleMesh& t0 = frames.start;
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 
   CollisionDetector detector(t0.faces, static_cast<int>(t0.vertex_count()), settings);
-  const std::vector<Collision>& collisions = detector.detect(t0.vertices, t1.vertices);
+  const std::vector<Collision>& collisions = detector.detect(t0.vertices, frames.end);
   const DetectionStats& s = detector.stats();
   long vf = 0;
   for (const Collision& c : collisions) vf += c.kind == PairKind::VertexFace ? 1 : 0;
@@ -177,6 +133,7 @@ void run_detect(const DetectOptions& o) {
   std::ofstream file(o.out);
   if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
   write_json(file, o, t0, collisions, s, load_ms);
+  file.close();  // flushes: a full disk shows here
   if (!file) throw std::runtime_error(o.out + ": write failed");
   std::cout << "wrote " << o.out << '\n';
 }
