@@ -48,6 +48,16 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
   CHECK_THAT(lines, Catch::StartsWith("file,line,kind,truth,hit,state,toi,culled\n"));
   CHECK(std::count(lines.begin(), lines.end(), '\n') == 4);
 
+  // The per-query file may not be one of the inputs (it would be truncated before it is read).
+  const std::string before = vertex_face_query("-1,1", 1) + vertex_face_query("1,2", 0);
+  const auto onto_input = run_cli("ccd '" + dir.path().string() + "' --per-query '" + (dir / "vertex-face/a.csv").string() + "'");
+  CHECK(onto_input.exit_code != 0);
+  CHECK_THAT(onto_input.output, Catch::Contains("would overwrite"));
+  std::ifstream input(dir / "vertex-face/a.csv");
+  std::stringstream kept;
+  kept << input.rdbuf();
+  CHECK(kept.str() == before);
+
   const auto json = run_cli("ccd '" + (dir / "vertex-face/a.csv").string() + "' --json --thickness 0.01");
   REQUIRE(json.exit_code == 0);
   CHECK_THAT(json.output,

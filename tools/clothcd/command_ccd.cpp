@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -225,6 +226,12 @@ void run_ccd(const CcdCommandOptions& options) {
   const std::vector<std::string> files = ccd::query_files(options.path);
   std::ofstream per_query;
   if (!options.per_query.empty()) {
+    std::error_code error;
+    for (const std::string& file : files) {
+      if (std::filesystem::equivalent(file, options.per_query, error)) {
+        throw std::invalid_argument("--per-query " + options.per_query + " is one of the query files it would overwrite");
+      }
+    }
     per_query.open(options.per_query);
     if (!per_query) throw std::runtime_error(options.per_query + ": cannot open for writing");
     per_query << "file,line,kind,truth,hit,state,toi,culled\n" << std::setprecision(17);
