@@ -158,10 +158,16 @@ bool QueryFileReader::next(QueryRecord& record) {
     if (count != 6 && count != 7)
       throw QueryFileError(place, "expected 6 or 7 comma-separated integers, found " + std::to_string(count) +
                                       " columns");
-    for (int c = 0; c < count; ++c)
+    for (int c = 0; c < count; ++c) {
       if (!is_integer(columns[c]))
         throw QueryFileError(place, "column " + std::to_string(c + 1) + " is not an integer: '" +
                                         std::string(columns[c]) + "'");
+      const std::size_t digits = columns[c].size() - (columns[c][0] == '-' || columns[c][0] == '+' ? 1 : 0);
+      if (digits > kMaxIntegerDigits)
+        throw QueryFileError(place, "column " + std::to_string(c + 1) + " holds an integer of " +
+                                        std::to_string(digits) + " digits, more than the " +
+                                        std::to_string(kMaxIntegerDigits) + " clothcd accepts");
+    }
     Eigen::Vector3d& point = row < 4 ? record.query.start[row] : record.query.end[row - 4];
     for (int d = 0; d < 3; ++d) {
       const bool exact =

@@ -132,6 +132,12 @@ TEST_CASE("malformed query files are errors naming the file and line", "[ccd][qu
   CHECK_THAT(error_of(path("truth.csv")), Catch::Contains("truth.csv:1:") && Catch::Contains("0 or 1"));
   write_file(path("range.csv"), std::string(kQuery).replace(0, 1, "1" + std::string(400, '0')));
   CHECK_THAT(error_of(path("range.csv")), Catch::Contains("range.csv:1:") && Catch::Contains("beyond the range"));
+  // Integers beyond kMaxIntegerDigits (the exact arithmetic on them would take minutes); the limit itself is fine.
+  const std::string longest(ccd::kMaxIntegerDigits, '7');
+  write_file(path("long.csv"), std::string(kQuery).replace(2, 1, "-" + longest));
+  CHECK_THAT(error_of(path("long.csv")), Catch::Contains("no error"));
+  write_file(path("longer.csv"), std::string(kQuery).replace(2, 1, longest + "7"));
+  CHECK_THAT(error_of(path("longer.csv")), Catch::Contains("longer.csv:1:") && Catch::Contains("1025 digits"));
   CHECK_THAT(error_of((dir / "missing.csv").string()), Catch::Contains("no such file"));
   // No --type and no vertex-face/edge-edge folder: the kind is unknown.
   write_file(dir / "plain.csv", kQuery);
