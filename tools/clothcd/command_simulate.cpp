@@ -244,7 +244,8 @@ void add_simulate_command(CLI::App& app) {
                                                  "cube, fish, or file (with --model)");
   command->add_option("--cloth", options->cloth, "The paper's cloth: A (20x20), B (30x30), C (50x50)")
       ->check(CLI::IsMember({"A", "B", "C"}));
-  command->add_option("--resolution", options->resolution, "N x N cloth vertices instead of --cloth")
+  command->add_option("--resolution", options->resolution, "N x N cloth vertices instead of --cloth (the thickness must stay below half the edge length: "
+                      "above about 200 with the default thickness, give a smaller --thickness)")
       ->check(CLI::Range(2, simulation::kMaxResolution));
   command->add_option("--steps", options->steps, "Number of steps (default: the scene's)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
