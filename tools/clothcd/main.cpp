@@ -1,6 +1,7 @@
 // The clothcd program: one subcommand per task; any error ends with a one-line message on stderr and exit code 1.
 #include <exception>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "commands.hpp"
@@ -47,6 +48,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help
     std::cerr << "clothcd: error: " << usage_error_message(app, argc, argv, e) << '\n';
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "clothcd: error: out of memory: the input needs more than this machine can give (for detect, two "
+                 "frames far apart make billions of candidate pairs; for simulate, a fine cloth at a large thickness)\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "clothcd: error: " << e.what() << '\n';
