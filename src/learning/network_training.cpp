@@ -161,14 +161,25 @@ TrainingReport train_pair_network(const PairDataset& dataset, const TrainingSett
   }
   if (progress) progress(total, total, settings.max_neurons);
 
+  // Written under temporary names and renamed at the end, so that a failed run leaves a model already in out_dir
+  // whole (its network.xml and card.json belong together).
   std::filesystem::create_directories(out_dir);
   const std::string network_path = out_dir + "/network.xml";
-  best->network.save(network_path);
+  const std::string network_part = network_path + ".part", card_part = out_dir + "/card.json.part";
+  best->network.save(network_part);
   // The runtime path: read back the file as the library will, so the card describes exactly what was saved.
+  NetworkWeights weights;
+  try {
+    weights = backend::read_network_weights(network_part);
+  } catch (const std::runtime_error& e) {
+    std::filesystem::remove(network_part);
+    throw std::runtime_error(std::string("training gave an unusable network (") + e.what() +
+                             "); features of extreme magnitude overflow the scaling layer: rescale or drop them. "
+                             "Nothing was written to " + out_dir);
+  }
   const std::vector<std::string> features = pair_feature_names(FeatureSettings{settings.feature_count});
-  const PairClassifier classifier(backend::read_network_weights(network_path),
-                                  OperatingPoint{0.0, settings.decision_threshold},
-                                  features, network_path);
+  const PairClassifier classifier(std::move(weights), OperatingPoint{0.0, settings.decision_threshold}, features,
+                                  network_path);
   PairFeatureBatch batch;
   batch.resize(dataset.row_count(), dataset.feature_count());
   for (std::size_t i = 0; i < dataset.row_count(); ++i)
@@ -205,18 +216,28 @@ TrainingReport train_pair_network(const PairDataset& dataset, const TrainingSett
   card.metrics.emplace_back("training_error", report.curve[card.hidden_neurons - 1].training_error);
   card.metrics.emplace_back("selection_error", report.curve[card.hidden_neurons - 1].selection_error);
   card.metrics.emplace_back("selection_accuracy", report.selection_confusion.accuracy());
-  card.metrics.emplace_back("testing_accuracy", report.testing_confusion.accuracy());
-  const ConfusionMatrix testing_exact =
-      confusion_matrix(testing.exact_label.data(), testing.probability.data(), testing.probability.size(), card.drop_below);
-  card.metrics.emplace_back("testing_real_collisions", static_cast<double>(testing_exact.true_positive + testing_exact.false_negative));
-  card.metrics.emplace_back("testing_real_collisions_dropped", static_cast<double>(testing_exact.false_negative));
+  if (!testing.probability.empty()) {  // no testing rows: no testing metrics (not zeros)
+    card.metrics.emplace_back("testing_accuracy", report.testing_confusion.accuracy());
+    const ConfusionMatrix testing_exact = confusion_matrix(testing.exact_label.data(), testing.probability.data(),
+                                                           testing.probability.size(), card.drop_below);
+    card.metrics.emplace_back("testing_real_collisions",
+                              static_cast<double>(testing_exact.true_positive + testing_exact.false_negative));
+    card.metrics.emplace_back("testing_real_collisions_dropped", static_cast<double>(testing_exact.false_negative));
+  }
   const std::size_t testing_positive = report.testing_confusion.true_positive + report.testing_confusion.false_negative;
   if (testing_positive > 0 && testing_positive < testing.probability.size()) {
     report.testing_auc = area_under_curve(
         roc_curve(testing.filter_label.data(), testing.probability.data(), testing.probability.size()));
     card.metrics.emplace_back("testing_auc", report.testing_auc);
   }
-  write_model_card(card, out_dir + "/card.json");
+  try {
+    write_model_card(card, card_part);
+  } catch (...) {
+    std::filesystem::remove(network_part);
+    throw;
+  }
+  std::filesystem::rename(network_part, network_path);
+  std::filesystem::rename(card_part, out_dir + "/card.json");
   write_curve(report.curve, out_dir);
   return report;
 }

@@ -86,3 +86,38 @@ TEST_CASE("training refuses data sets it cannot learn from", "[learning][trainin
     CHECK_THROWS_WITH(train_pair_network(dataset, bad_drop, out, "x"), Catch::Contains("margins"));
   }
 }
+
+TEST_CASE("a network that trains to non-finite weights is refused and leaves the model in place", "[learning][training]") {
+  const test::TrainedModel& model = test::trained_model();
+  const std::string out = (fs::temp_directory_path() / "clothcd_train_overflow").string();
+  fs::remove_all(out);
+  fs::create_directories(out);
+  for (const char* file : {"network.xml", "card.json"}) fs::copy_file(model.directory + "/" + file, out + "/" + file);
+  const std::string network = read_file(out + "/network.xml"), card = read_file(out + "/card.json");
+  // A feature of magnitude 1e308 overflows the scaling layer: the trained weights come out NaN.
+  PairDataset dataset = test::make_pair_dataset(200, 23);
+  dataset.features[0] = -1e308;
+  dataset.features[dataset.feature_count()] = 1e308;
+  TrainingSettings settings = test::small_training_settings();
+  settings.max_neurons = 1;
+  CHECK_THROWS_WITH(train_pair_network(dataset, settings, out, "x"), Catch::Contains("unusable network"));
+  CHECK(read_file(out + "/network.xml") == network);
+  CHECK(read_file(out + "/card.json") == card);
+  CHECK_FALSE(fs::exists(out + "/network.xml.part"));
+  fs::remove_all(out);
+}
+
+TEST_CASE("without testing rows the card holds no testing metrics and the AUC is undefined", "[learning][training]") {
+  PairDataset dataset = test::make_pair_dataset(300, 24);
+  for (Split& split : dataset.split)
+    if (split == Split::Testing) split = Split::Training;
+  TrainingSettings settings = test::small_training_settings();
+  settings.max_neurons = 1;
+  const std::string out = (fs::temp_directory_path() / "clothcd_train_no_testing").string();
+  const TrainingReport report = train_pair_network(dataset, settings, out, "x");
+  CHECK(std::isnan(report.testing_auc));
+  const std::string card = read_file(out + "/card.json");
+  CHECK(card.find("testing_accuracy") == std::string::npos);
+  CHECK(card.find("selection_accuracy") != std::string::npos);
+  fs::remove_all(out);
+}

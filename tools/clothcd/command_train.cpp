@@ -1,6 +1,7 @@
 // `clothcd train DATASET.csv --out models/NAME`: the paper's network trained by OpenNN with incremental neuron
 // selection; writes network.xml, card.json, neurons.csv and neurons.png into the output directory.
 #include <cstdio>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -62,7 +63,13 @@ void run_train(const TrainOptions& options) {
   std::cout << "chosen hidden neurons: " << card.hidden_neurons << "\n"
             << "dropped constant columns: " << card.dropped_columns.size() << "\n"
             << "selection accuracy: " << report.selection_confusion.accuracy() << "\n"
-            << "testing accuracy: " << report.testing_confusion.accuracy() << "  AUC: " << report.testing_auc << "\n"
+            << "testing accuracy: "
+            << (card.rows_testing == 0 ? std::string("- (no testing rows)")
+                                       : std::to_string(report.testing_confusion.accuracy()))
+            << "  AUC: "
+            << (std::isnan(report.testing_auc) ? std::string("- (undefined: no testing rows or one class)")
+                                               : std::to_string(report.testing_auc))
+            << "\n"
             << "operating point: drop below " << card.drop_below << ", keep from "
             << card.keep_from << " (decision threshold " << card.decision_threshold << ")\n"
             << "wrote " << options.out << "/{network.xml,card.json,neurons.csv,neurons.png}\n";

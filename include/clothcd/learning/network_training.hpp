@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,8 @@ struct TrainingReport {
   ModelCard card;                        ///< Also written as card.json.
   ConfusionMatrix selection_confusion;   ///< Against the filter label at the decision threshold.
   ConfusionMatrix testing_confusion;     ///< Against the filter label at the decision threshold.
-  double testing_auc = 0.0;              ///< AUC on the testing split against the filter label.
+  /// AUC on the testing split against the filter label; NaN when it is undefined (no testing rows, or one class).
+  double testing_auc = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Progress callback: (finished trainings, total trainings, neurons of the current step).
