@@ -4,6 +4,7 @@
 #include "support/test_support.hpp"
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -26,6 +27,29 @@ TEST_CASE("clothcd train and evaluate run end to end", "[learning][cli]") {
   CHECK(report.find("real collisions") != std::string::npos);
   CHECK(fs::exists(fs::path(model) / "roc.csv"));
   CHECK(fs::exists(fs::path(model) / "roc.png"));
+  CHECK(report.find("AUC - (undefined") == std::string::npos);
+
+  // A testing split of one class: no AUC and no sensitivity to report (they were printed as 0 and 1).
+  std::ifstream in(data);
+  std::ofstream one_class(dir / "one_class.csv");
+  std::string line;
+  std::getline(in, line);
+  one_class << line << '\n';
+  while (std::getline(in, line)) {
+    const std::size_t last = line.rfind(',');
+    const bool testing = line.compare(last + 1, std::string::npos, "testing") == 0;
+    // filter_label is the fifth column from the end (filter_label, exact_label, type, scene, split).
+    std::size_t at = line.size();
+    for (int k = 0; k < 5; ++k) at = line.rfind(',', at - 1);
+    const bool label_one = line.compare(at + 1, 2, "1,") == 0;
+    if (!testing || !label_one) one_class << line << '\n';
+  }
+  one_class.close();
+  const auto single = run_cli("evaluate \"" + model + "\" \"" + (dir / "one_class.csv").string() + "\" --roc \"" +
+                              (dir / "roc1").string() + "\"");
+  REQUIRE(single.exit_code == 0);
+  CHECK(single.output.find("AUC - (undefined: one class)") != std::string::npos);
+  CHECK(single.output.find("sensitivity - (no label 1)") != std::string::npos);
 
   const auto missing_model = run_cli("evaluate \"" + (dir / "missing").string() + "\" \"" + data + "\"");
   CHECK(missing_model.exit_code != 0);

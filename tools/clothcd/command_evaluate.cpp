@@ -35,7 +35,9 @@ void run_evaluate(const EvaluateOptions& options) {
             << "  filter label 1  " << c.true_positive << "  " << c.false_negative << "\n"
             << "  filter label 0  " << c.false_positive << "  " << c.true_negative << "\n"
             << "  accuracy " << c.accuracy() << "  error rate " << c.error_rate() << "  sensitivity "
-            << c.sensitivity() << "  specificity " << c.specificity() << "  AUC " << r.auc << "\n"
+            << measure_text(c.true_positive + c.false_negative > 0, c.sensitivity(), "- (no label 1)") << "  specificity "
+            << measure_text(c.true_negative + c.false_positive > 0, c.specificity(), "- (no label 0)") << "  AUC "
+            << measure_text(!r.roc.empty(), r.auc, "- (undefined: one class)") << "\n"
             << "against the exact label (drop below " << r.drop_below << "):\n"
             << "  real collisions " << r.real_collisions << ", dropped by the network alone " << r.real_collisions_dropped
             << " (below the decision threshold: " << r.real_collisions_below_threshold

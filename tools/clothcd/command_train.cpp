@@ -64,11 +64,10 @@ void run_train(const TrainOptions& options) {
             << "dropped constant columns: " << card.dropped_columns.size() << "\n"
             << "selection accuracy: " << report.selection_confusion.accuracy() << "\n"
             << "testing accuracy: "
-            << (card.rows_testing == 0 ? std::string("- (no testing rows)")
-                                       : std::to_string(report.testing_confusion.accuracy()))
+            << measure_text(card.rows_testing > 0, report.testing_confusion.accuracy(), "- (no testing rows)")
             << "  AUC: "
-            << (std::isnan(report.testing_auc) ? std::string("- (undefined: no testing rows or one class)")
-                                               : std::to_string(report.testing_auc))
+            << measure_text(!std::isnan(report.testing_auc), report.testing_auc,
+                            "- (undefined: no testing rows or one class)")
             << "\n"
             << "operating point: drop below " << card.drop_below << ", keep from "
             << card.keep_from << " (decision threshold " << card.decision_threshold << ")\n"

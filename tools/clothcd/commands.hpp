@@ -43,6 +43,14 @@ inline const CLI::Validator kSeedNumber(
     "SEED");
 
 /// `text` as a quoted JSON string (quotes, backslashes and control characters escaped), for file paths in JSON output.
+/// `value` as a stream prints it by default when `defined`, else `undefined` (a measure without the data it needs).
+inline std::string measure_text(bool defined, double value, const char* undefined) {
+  if (!defined) return undefined;
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 inline std::string json_string(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
