@@ -223,6 +223,7 @@ TriangleMesh load_mesh(const fs::path& path, const LoadOptions& options, LoadRep
   detail::check_off_body(path);
   detail::check_ply_body(path);
   if (lower_extension(path) == ".obj") detail::check_obj_numbers(path);
+  if (lower_extension(path) == ".ase") detail::check_ase_header(path);
   LoadReport local_report;
   const std::lock_guard<std::mutex> lock(import_mutex());
   const ScopedErrorLog log;

@@ -107,6 +107,7 @@ void check_ply_body(const std::filesystem::path& path) {
     std::string name;
     long long count = 0;
     std::vector<bool> is_list;  // per property: a list (count, then items) or one scalar
+    std::vector<std::string> scalars;  // names of the scalar properties
   };
   std::vector<Element> elements;
   double least_bytes = 0.0;  // binary: the smallest body the header allows (each list at least its count)
@@ -136,9 +137,19 @@ void check_ply_body(const std::filesystem::path& path) {
       const int bytes = ply_type_bytes(type);
       if (bytes == 0) throw MeshError(file, "PLY property type '" + type + "' is unknown");
       elements.back().is_list.push_back(list);
+      std::string name;
+      if (!list && words >> name) elements.back().scalars.push_back(name);
       least_bytes += static_cast<double>(elements.back().count) * bytes;
     } else if (keyword == "end_header") {
       break;
+    }
+  }
+  // Without x, y and z the reader puts every vertex at the origin.
+  for (const Element& element : elements) {
+    if (element.name != "vertex" || element.count == 0) continue;
+    for (const char* axis : {"x", "y", "z"}) {
+      if (std::find(element.scalars.begin(), element.scalars.end(), axis) == element.scalars.end())
+        throw MeshError(file, std::string("PLY vertex element has no '") + axis + "' property");
     }
   }
   if (ascii) {
@@ -210,6 +221,14 @@ std::vector<long long> obj_face_vertices(const std::filesystem::path& path) {
     }
   }
   return corners;
+}
+
+void check_ase_header(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string first;
+  in >> first;
+  if (first != "*3DSMAX_ASCIIEXPORT")
+    throw MeshError(path.string(), "not an ASE file (it does not start with *3DSMAX_ASCIIEXPORT)");
 }
 
 }  // namespace clothcd::detail

@@ -226,6 +226,14 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
     require_load_error(write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate");
   }
   SECTION("not a mesh") { require_load_error(write_file(dir / "junk.xyz", "garbage\x01\x02"), "cannot be read"); }
+  SECTION("text that the ASE reader would turn into a mesh at the origin") {
+    require_load_error(write_file(dir / "hello.ase", "hello world\n"), "not an ASE file");
+  }
+  SECTION("a PLY vertex without x, y or z (the reader would put it at the origin)") {
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float a\nproperty float y\n"
+                               "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    require_load_error(write_file(dir / "noxyz.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "no 'x' property");
+  }
 }
 
 TEST_CASE("files cut at any point load or fail cleanly, never crash", "[mesh][io][errors]") {
