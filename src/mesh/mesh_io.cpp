@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -98,12 +99,43 @@ void reject_faces_without_indices(const aiScene& scene, const fs::path& path) {
   }
 }
 
+// The file name's extension in lower case (".obj").
+std::string lower_extension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  return extension;
+}
+
+// An OFF file with # comments, without them (assimp's OFF reader loses the faces after a comment line between the
+// vertices and the faces); empty for any other file.
+std::string uncommented_off(const fs::path& path) {
+  if (lower_extension(path) != ".off") return {};
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.find('#') == std::string::npos) return {};
+  std::string out;
+  out.reserve(text.size());
+  bool comment = false;
+  for (const char c : text) {
+    if (c == '#') comment = true;
+    if (c == '\n') comment = false;
+    if (!comment) out.push_back(c);
+  }
+  return out;
+}
+
 const aiScene* import_scene(Assimp::Importer& importer, const fs::path& path, const ScopedErrorLog& log) {
   // Points and lines are not surfaces: drop them, keep triangles (polygons are triangulated).
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // Read and validate first, post-process second: assimp's triangulation aborts the process (an assertion, not an
   // error) on faces without indices, which some readers produce from truncated files.
-  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+  const aiScene* scene = nullptr;
+  const std::string off_text = uncommented_off(path);
+  if (!off_text.empty()) {
+    scene = importer.ReadFileFromMemory(off_text.data(), off_text.size(), aiProcess_ValidateDataStructure, "off");
+  } else {
+    scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+  }
   if (scene != nullptr) reject_faces_without_indices(*scene, path);
   if (scene != nullptr) {
     scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType);
@@ -206,13 +238,6 @@ void save_ascii_ply(const TriangleMesh& mesh, std::ofstream& out) {
   for (Eigen::Index f = 0; f < mesh.face_count(); ++f) {
     out << "3 " << mesh.faces(f, 0) << ' ' << mesh.faces(f, 1) << ' ' << mesh.faces(f, 2) << '\n';
   }
-}
-
-// The file name's extension in lower case (".obj").
-std::string lower_extension(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension;
 }
 
 }  // namespace

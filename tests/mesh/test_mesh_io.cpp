@@ -226,6 +226,12 @@ TEST_CASE("bad mesh files give a clear error naming the file", "[mesh][io][error
     require_load_error(write_file(dir / "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"), "degenerate");
   }
   SECTION("not a mesh") { require_load_error(write_file(dir / "junk.xyz", "garbage\x01\x02"), "cannot be read"); }
+  SECTION("an OFF file with comment lines loads (the reader alone lost the faces after one)") {
+    const TriangleMesh mesh =
+        load_mesh(write_file(dir / "comments.off", "OFF\n# c\n3 1 0\n# c\n0 0 0\n1 0 0 # end\n0 1 0\n# c\n3 0 1 2\n"));
+    CHECK(mesh.face_count() == 1);
+    CHECK(mesh.vertices(1, 0) == 1.0);
+  }
   SECTION("text that the ASE reader would turn into a mesh at the origin") {
     require_load_error(write_file(dir / "hello.ase", "hello world\n"), "not an ASE file");
   }
