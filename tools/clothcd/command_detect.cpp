@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -146,7 +147,7 @@ void add_detect_command(CLI::App& app) {
   command->add_option("T0_MESH", o->t0_path, "Mesh at the start of the step")->required();
   command->add_option("T1_MESH", o->t1_path, "Same mesh (same faces) at the end of the step")->required();
   command->add_option("--thickness", o->thickness, "Minimum separation, in mesh units")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_number(0.0, std::numeric_limits<double>::infinity()));
   command->add_flag("--exact", o->exact,
                     "Thickness 0: decide the pairs interval arithmetic leaves undecided exactly instead of reporting "
                     "them as conservative hits");
