@@ -68,7 +68,15 @@ void add_evaluate_command(CLI::App& app) {
   command->add_option("MODEL", options->model, "Model directory (or its network.xml)")->required();
   command->add_option("DATASET", options->dataset, "Pair data set CSV")->required();
   command->add_option("--split", options->split, "training, selection or testing")->capture_default_str();
-  command->add_option("--roc", options->roc, "Prefix of the ROC CSV/PNG (default MODEL_DIR/roc)");
+  command->add_option("--roc", options->roc, "Prefix of the ROC CSV/PNG (default MODEL_DIR/roc)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            const std::filesystem::path path(text);
+            return text.empty() || !path.has_filename() || std::filesystem::is_directory(path)
+                       ? std::string("must be a file name prefix (PREFIX.csv and PREFIX.png are written), not a folder")
+                       : std::string();
+          },
+          "PREFIX"));
   command->callback([options] { run_evaluate(*options); });
 }
 
