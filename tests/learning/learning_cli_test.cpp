@@ -51,7 +51,7 @@ TEST_CASE("clothcd train and evaluate run end to end", "[learning][cli]") {
   CHECK(single.output.find("AUC - (undefined: one class)") != std::string::npos);
   CHECK(single.output.find("sensitivity - (no label 1)") != std::string::npos);
 
-  for (const std::string roc : {dir.string(), (dir / "sub/").string(), std::string()}) {  // folders would get ".csv"
+  for (const std::string& roc : {dir.string(), (dir / "sub/").string(), std::string()}) {  // folders would get ".csv"
     const auto folder = run_cli("evaluate \"" + model + "\" \"" + data + "\" --roc \"" + roc + "\"");
     CHECK(folder.exit_code != 0);
     CHECK(folder.output.find("file name prefix") != std::string::npos);
