@@ -1,5 +1,6 @@
-// The projection filter on a block of pairs (see projection_block.hpp): every direction is tried on every lane (no
-// early exit), stage by stage over the lanes, so each loop is straight-line arithmetic the compiler vectorizes.
+// The projection filter on a block of pairs (see projection_block.hpp): every direction of the pass is tried on every
+// lane (no early exit), stage by stage over the lanes, so each loop is straight-line arithmetic the compiler
+// vectorizes.
 //
 // Rounding: a projection z = s . p (three products, two sums) is within gamma_3 |s|_1 M of its exact value, M the
 // pair's largest coordinate magnitude (gamma_3 = 3u / (1 - 3u), u = 2^-53); a difference of two projections is thus
@@ -50,8 +51,14 @@ template <bool VertexFace, class Dot>
   }
 }
 
+// The directions of one pass (BlockPass): the primitives' normals and/or the fixed ones.
+struct PassDirections {
+  bool normals;
+  bool fixed;
+};
+
 template <bool VertexFace>
-[[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, bool normals,
+[[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, PassDirections pass,
                                                 std::uint8_t* out) {
   const auto& x = b.x;
   alignas(64) Lanes largest;  // M: the largest coordinate magnitude of the lane's pair
@@ -64,7 +71,7 @@ template <bool VertexFace>
   }
   alignas(64) Lanes culled = {};
   alignas(64) Lanes threshold;
-  if (normals) {
+  if (pass.normals) {
     // The face normal (vertex-face) or the edges' cross product (edge-edge) at each end, used as a fixed vector.
     for (int time = 0; time < 2; ++time) {
       alignas(64) double s[3][kLanes];
@@ -99,33 +106,35 @@ template <bool VertexFace>
     }
     try_direction<VertexFace>(dot, threshold, culled);
   };
-  const double root2 = std::sqrt(2.0), root3 = std::sqrt(3.0);
-  fixed(1.0, 1.0, [&](int t, int k, int i) { return x[t][k][0][i]; });
-  fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][0][i] + x[t][k][1][i]; });
-  fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][0][i] + x[t][k][2][i]; });
-  fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][1][i] + x[t][k][2][i]; });
-  fixed(root3, 3.0, [&](int t, int k, int i) { return (x[t][k][0][i] + x[t][k][1][i]) + x[t][k][2][i]; });
+  if (pass.fixed) {
+    const double root2 = std::sqrt(2.0), root3 = std::sqrt(3.0);
+    fixed(1.0, 1.0, [&](int t, int k, int i) { return x[t][k][0][i]; });
+    fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][0][i] + x[t][k][1][i]; });
+    fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][0][i] + x[t][k][2][i]; });
+    fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][1][i] + x[t][k][2][i]; });
+    fixed(root3, 3.0, [&](int t, int k, int i) { return (x[t][k][0][i] + x[t][k][1][i]) + x[t][k][2][i]; });
+  }
   for (int i = 0; i < b.count; ++i) out[i] = culled[i] > 0.0 && largest[i] <= kLargest ? 1 : 0;
 }
 
 // Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
 // the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
-void filter_baseline(const QueryBlock& b, double thickness, bool normals, std::uint8_t* out) {
-  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, normals, out);
-  filter_block<false>(b, thickness, normals, out);
+void filter_baseline(const QueryBlock& b, double thickness, PassDirections pass, std::uint8_t* out) {
+  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
+  filter_block<false>(b, thickness, pass, out);
 }
 
 #if defined(CLOTHCD_AVX2_PATHS)
-__attribute__((target("avx2"))) void filter_avx2(const QueryBlock& b, double thickness, bool normals,
+__attribute__((target("avx2"))) void filter_avx2(const QueryBlock& b, double thickness, PassDirections pass,
                                                  std::uint8_t* out) {
-  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, normals, out);
-  filter_block<false>(b, thickness, normals, out);
+  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
+  filter_block<false>(b, thickness, pass, out);
 }
 
-__attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, double thickness, bool normals,
+__attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, double thickness, PassDirections pass,
                                                       std::uint8_t* out) {
-  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, normals, out);
-  filter_block<false>(b, thickness, normals, out);
+  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
+  filter_block<false>(b, thickness, pass, out);
 }
 #endif
 
@@ -178,20 +187,22 @@ BlockIsa fastest_block_isa() {
 }
 
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
-                             const ProjectionFilterOptions& options, std::uint8_t* culled, BlockIsa isa) {
+                             const ProjectionFilterOptions& options, std::uint8_t* culled, BlockIsa isa,
+                             BlockPass pass) {
   const bool normals = options.use_primitive_normals;
+  const PassDirections directions{normals && pass != BlockPass::AfterNormals, pass != BlockPass::Normals};
 #if defined(CLOTHCD_AVX2_PATHS)
   if (isa == BlockIsa::Avx512) {
-    filter_avx512(block, settings.thickness, normals, culled);
+    filter_avx512(block, settings.thickness, directions, culled);
   } else if (isa == BlockIsa::Avx2) {
-    filter_avx2(block, settings.thickness, normals, culled);
+    filter_avx2(block, settings.thickness, directions, culled);
   } else {
-    filter_baseline(block, settings.thickness, normals, culled);
+    filter_baseline(block, settings.thickness, directions, culled);
   }
 #else
-  filter_baseline(block, settings.thickness, normals, culled);
+  filter_baseline(block, settings.thickness, directions, culled);
 #endif
-  if (!normals) return;
+  if (!normals || pass == BlockPass::Normals) return;
   // The in-plane directions cost more per pair and are needed by few: they run on the survivors only, one at a time.
   for (int lane = 0; lane < block.count; ++lane) {
     if (culled[lane] || !within_range(block, lane)) continue;
@@ -203,21 +214,35 @@ void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSe
                                const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled,
                                BlockIsa isa) {
   culled.assign(queries.size(), 0);
-  QueryBlock block;
-  std::size_t first = 0;
-  auto flush = [&]() {
-    if (block.count == 0) return;
-    block.pad_unused();
-    projection_filter_block(block, settings, options, culled.data() + first, isa);
-    first += static_cast<std::size_t>(block.count);
-    block.count = 0;
+  // One pass over the queries at the positions `todo`, in blocks of one kind formed in order.
+  auto run = [&](const std::vector<std::size_t>& todo, BlockPass pass) {
+    QueryBlock block;
+    std::size_t first = 0;
+    auto flush = [&]() {
+      if (block.count == 0) return;
+      block.pad_unused();
+      std::uint8_t block_culled[QueryBlock::kLanes];
+      projection_filter_block(block, settings, options, block_culled, isa, pass);
+      for (int lane = 0; lane < block.count; ++lane) culled[todo[first + lane]] = block_culled[lane];
+      first += static_cast<std::size_t>(block.count);
+      block.count = 0;
+    };
+    for (const std::size_t i : todo) {
+      if (block.count == QueryBlock::kLanes || (block.count > 0 && queries[i].kind != block.kind)) flush();
+      block.kind = queries[i].kind;
+      block.set(block.count++, queries[i]);
+    }
+    flush();
   };
-  for (const CcdQuery& q : queries) {
-    if (block.count == QueryBlock::kLanes || (block.count > 0 && q.kind != block.kind)) flush();
-    block.kind = q.kind;
-    block.set(block.count++, q);
+  std::vector<std::size_t> all(queries.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  if (!options.use_primitive_normals) return run(all, BlockPass::All);
+  run(all, BlockPass::Normals);
+  std::vector<std::size_t> survivors;
+  for (const std::size_t i : all) {
+    if (!culled[i]) survivors.push_back(i);
   }
-  flush();
+  run(survivors, BlockPass::AfterNormals);
 }
 
 }  // namespace clothcd::ccd::detail

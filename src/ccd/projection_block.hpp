@@ -42,18 +42,28 @@ enum class BlockIsa {
 /// filter tries): true when one of them separates the primitives by more than the thickness over the whole step.
 [[nodiscard]] bool separated_in_plane(const CcdQuery& query, const CcdSettings& settings);
 
+/// The directions one call of projection_filter_block tries. The primitives' normals cull most pairs a broad phase
+/// passes, so a caller with many pairs can try them alone first and the other directions on the survivors only.
+enum class BlockPass {
+  All,           ///< Every direction the options name.
+  Normals,       ///< Only the primitives' normals at t = 0 and t = 1 (none without use_primitive_normals).
+  AfterNormals,  ///< Every direction the options name except those of the Normals pass.
+};
+
 /// culled[i] = 1 for each lane i < block.count that the projection filter culls, 0 otherwise. The same test as
 /// projection_filter_culls(query, settings, options) with a coarser rounding bound (16 u |s|_1 max|coordinate| per
 /// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only
 /// when, along one direction s, every point of one primitive lies more than thickness |s| beyond every point of the
 /// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled. With primitive
-/// normals, the lanes that survive the block's directions go through separated_in_plane, one at a time.
+/// normals, the lanes that survive the block's directions go through separated_in_plane, one at a time. With `pass`,
+/// only some of the directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
 /// `isa` must be one of supported_block_isas().
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled,
-                             BlockIsa isa = fastest_block_isa());
+                             BlockIsa isa = fastest_block_isa(), BlockPass pass = BlockPass::All);
 
-/// The block filter over a vector of queries of any kinds (blocks formed in order): culled[i] for queries[i]. For tests
+/// The block filter over a vector of queries of any kinds (blocks formed in order; with primitive normals, the Normals
+/// pass over all, then AfterNormals over the survivors, as the detector runs it): culled[i] for queries[i]. For tests
 /// and benchmarks; the detector fills its blocks straight from the vertex arrays.
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,
                                const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled,

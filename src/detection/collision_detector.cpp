@@ -98,7 +98,8 @@ struct CollisionDetector::Impl {
   detail::PairBatch batch;   // the pairs of the last call and their narrow-phase work
   broadphase::CandidateSet fresh;  // candidates found by this call's search
   std::vector<std::size_t> todo;   // positions in `batch` of the pairs this call must test
-  std::vector<std::size_t> blocks;  // positions in `todo` where the blocks of the block filter start
+  std::vector<std::size_t> blocks;  // positions in a filter pass's list where its blocks start
+  std::vector<std::size_t> survivors;  // positions in `batch` of the pairs the first filter pass left
   std::vector<detail::KeyedIndex> vertex_face_hits;  // the hits of one kind: canonical sort key and batch position
   std::vector<detail::KeyedIndex> edge_edge_hits;
   std::vector<detail::KeyedIndex> sort_scratch;
@@ -210,32 +211,32 @@ struct CollisionDetector::Impl {
     }
   }
 
-  // The projection filter (and the non-penetration filter behind it in the Combined mode) on the `todo` pairs, a block
-  // of one kind at a time (ccd::detail::projection_filter_block); sets their keep flags.
-  void cull_in_blocks(const Vertices& start, const Vertices& end, const ccd::CcdSettings& ccd_settings) {
+  // One pass of the block projection filter over the batch positions `positions` (vertex-face ones first, then
+  // edge-edge ones): blocks of up to QueryBlock::kLanes pairs of one kind. Sets keep to 0 for the culled pairs and to
+  // 1 for the others; `last_pass` adds the non-penetration filter behind it (the Combined mode at zero thickness).
+  void filter_pass(const std::vector<std::size_t>& positions, const Vertices& start, const Vertices& end,
+                   const ccd::CcdSettings& ccd_settings, ccd::detail::BlockPass pass, bool last_pass) {
     constexpr std::size_t lanes = ccd::detail::QueryBlock::kLanes;
-    // todo holds the vertex-face positions first, then the edge-edge ones (each ascending): blocks of up to `lanes`
-    // positions of one kind.
     const std::size_t first_edge_edge = static_cast<std::size_t>(
-        std::partition_point(todo.begin(), todo.end(),
+        std::partition_point(positions.begin(), positions.end(),
                              [&](std::size_t i) { return batch.pairs[i].kind == PairKind::VertexFace; }) -
-        todo.begin());
+        positions.begin());
     blocks.clear();
     for (std::size_t j = 0; j < first_edge_edge; j += lanes) blocks.push_back(j);
-    for (std::size_t j = first_edge_edge; j < todo.size(); j += lanes) blocks.push_back(j);
+    for (std::size_t j = first_edge_edge; j < positions.size(); j += lanes) blocks.push_back(j);
     const ccd::ProjectionFilterOptions options{settings.projection_normals};
     const ccd::detail::BlockIsa isa = ccd::detail::fastest_block_isa();
     // The non-penetration filter says nothing with a thickness (ccd::nonpenetration_filter_culls is false then).
-    const bool nonpenetration = filter == ccd::CcdFilter::Combined && ccd_settings.thickness == 0.0;
+    const bool nonpenetration = last_pass && filter == ccd::CcdFilter::Combined && ccd_settings.thickness == 0.0;
     for_each_index(blocks.size(), settings.parallel, [&](std::size_t b) {
       const std::size_t first = blocks[b];
-      const std::size_t segment_end = first < first_edge_edge ? first_edge_edge : todo.size();
+      const std::size_t segment_end = first < first_edge_edge ? first_edge_edge : positions.size();
       const std::size_t last = std::min(first + lanes, segment_end);
       ccd::detail::QueryBlock block;
-      block.kind = batch.pairs[todo[first]].kind;
+      block.kind = batch.pairs[positions[first]].kind;
       block.count = static_cast<int>(last - first);
       for (int lane = 0; lane < block.count; ++lane) {
-        const std::array<VertexRef, 4>& r = fill_refs(todo[first + lane]);
+        const std::array<VertexRef, 4>& r = fill_refs(positions[first + lane]);
         for (int k = 0; k < 4; ++k) {
           const double* x0 = start_of(r[k].body, start).row(r[k].vertex).data();
           const double* x1 = end_of(r[k].body, end).row(r[k].vertex).data();
@@ -247,16 +248,29 @@ struct CollisionDetector::Impl {
       }
       block.pad_unused();
       std::array<std::uint8_t, lanes> culled;
-      ccd::detail::projection_filter_block(block, ccd_settings, options, culled.data(), isa);
+      ccd::detail::projection_filter_block(block, ccd_settings, options, culled.data(), isa, pass);
       for (int lane = 0; lane < block.count; ++lane) {
-        if (culled[lane]) {
-          batch.keep[todo[first + lane]] = 0;
-          continue;
-        }
-        const std::size_t i = todo[first + lane];
-        batch.keep[i] = nonpenetration && ccd::nonpenetration_filter_culls(block.query(lane), ccd_settings) ? 0 : 1;
+        const std::size_t i = positions[first + lane];
+        batch.keep[i] = culled[lane] || (nonpenetration && ccd::nonpenetration_filter_culls(block.query(lane),
+                                                                                            ccd_settings))
+                            ? 0
+                            : 1;
       }
     });
+  }
+
+  // The projection filter (and the non-penetration filter behind it in the Combined mode) on the `todo` pairs; sets
+  // their keep flags. With the primitives' normals, which cull most pairs, those directions run first on all pairs
+  // and the other directions on the survivors only.
+  void cull_in_blocks(const Vertices& start, const Vertices& end, const ccd::CcdSettings& ccd_settings) {
+    using ccd::detail::BlockPass;
+    if (!settings.projection_normals) return filter_pass(todo, start, end, ccd_settings, BlockPass::All, true);
+    filter_pass(todo, start, end, ccd_settings, BlockPass::Normals, false);
+    survivors.clear();
+    for (const std::size_t i : todo) {
+      if (batch.keep[i]) survivors.push_back(i);
+    }
+    filter_pass(survivors, start, end, ccd_settings, BlockPass::AfterNormals, true);
   }
 
   // Queries, culling and CCD for the pairs at the `todo` positions of the batch (the network mode always tests all).

@@ -219,3 +219,41 @@ TEST_CASE("block projection filter keeps pairs with huge or tiny coordinates", "
     }
   }
 }
+
+TEST_CASE("block projection filter: the Normals pass and the AfterNormals pass together cull what All culls",
+          "[ccd][filters]") {
+  using ccd::detail::BlockPass;
+  PairMaker maker(82);
+  const ccd::ProjectionFilterOptions normals{true};
+  int only_normals = 0, only_after = 0;
+  for (const double thickness : {0.0, 0.004}) {
+    const ccd::CcdSettings settings{thickness};
+    for (int b = 0; b < 200; ++b) {
+      ccd::detail::QueryBlock block;
+      block.kind = maker.kind();
+      block.count = 1 + b % ccd::detail::QueryBlock::kLanes;
+      for (int lane = 0; lane < block.count; ++lane) {
+        block.set(lane, lane % 3 == 0 ? maker.degenerate_pair(block.kind)
+                        : lane % 3 == 1 ? maker.resting_pair(block.kind, thickness * maker.uniform(0.5, 3.0) + 1e-3)
+                                        : maker.random_pair(block.kind, 0.05, 0.01));
+      }
+      block.pad_unused();
+      for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+        std::uint8_t all[ccd::detail::QueryBlock::kLanes], first[ccd::detail::QueryBlock::kLanes],
+            second[ccd::detail::QueryBlock::kLanes];
+        ccd::detail::projection_filter_block(block, settings, normals, all, isa, BlockPass::All);
+        ccd::detail::projection_filter_block(block, settings, normals, first, isa, BlockPass::Normals);
+        ccd::detail::projection_filter_block(block, settings, normals, second, isa, BlockPass::AfterNormals);
+        for (int lane = 0; lane < block.count; ++lane) {
+          INFO("block " << b << " lane " << lane << " isa " << static_cast<int>(isa));
+          CHECK(static_cast<bool>(all[lane]) == (first[lane] || second[lane]));
+          only_normals += first[lane] && !second[lane];
+          only_after += second[lane] && !first[lane];
+        }
+      }
+    }
+  }
+  // Each pass culls pairs the other does not (so neither is a no-op).
+  CHECK(only_normals > 0);
+  CHECK(only_after > 0);
+}
