@@ -27,6 +27,11 @@ constexpr double kNormSlack = 1.0 + 1e-12;
 
 using Lanes = double[kLanes];
 
+// Lambdas do not take the target attribute (AVX2, AVX-512) of the function they are written in, and GCC may leave one
+// out of line even inside a `flatten` function: those of the filter are forced inline, so that none is compiled for
+// the baseline and called per lane.
+#define INLINE_LAMBDA __attribute__((always_inline))
+
 // One direction on every lane: culled[i] becomes 1 when lane i's primitives are separated along it by more than
 // threshold[i] at both ends of the step. dot(t, k, i) is the projection of point k at time t of lane i.
 template <bool VertexFace, class Dot>
@@ -51,11 +56,19 @@ template <bool VertexFace, class Dot>
   }
 }
 
-// The directions of one pass (BlockPass): the primitives' normals and/or the fixed ones.
+// The directions of one pass (BlockPass).
 struct PassDirections {
-  bool normals;
-  bool fixed;
+  bool normals;   // the face normal or the edges' cross product at t = 0 and t = 1
+  bool fixed;     // eq. (10)'s five fixed directions
+  bool in_plane;  // the in-plane normals of ProjectionFilterOptions::use_primitive_normals at t = 0 and t = 1
 };
+
+// a x b into out.
+[[gnu::always_inline]] inline void cross(const double* a, const double* b, double* out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
 
 template <bool VertexFace>
 [[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, PassDirections pass,
@@ -71,36 +84,44 @@ template <bool VertexFace>
   }
   alignas(64) Lanes culled = {};
   alignas(64) Lanes threshold;
-  if (pass.normals) {
-    // The face normal (vertex-face) or the edges' cross product (edge-edge) at each end, used as a fixed vector.
-    for (int time = 0; time < 2; ++time) {
-      alignas(64) double s[3][kLanes];
-      for (int i = 0; i < kLanes; ++i) {
-        const int from = VertexFace ? 1 : 0, a_end = VertexFace ? 2 : 1, b_from = VertexFace ? 1 : 2;
-        double a[3], e[3];
-        for (int c = 0; c < 3; ++c) {
-          a[c] = x[time][a_end][c][i] - x[time][from][c][i];
-          e[c] = x[time][3][c][i] - x[time][b_from][c][i];
-        }
-        double n[3] = {a[1] * e[2] - a[2] * e[1], a[2] * e[0] - a[0] * e[2], a[0] * e[1] - a[1] * e[0]};
-        const double squared = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        // A normal too small for an accurate length or too large (or not finite) becomes the zero vector, whose
-        // projections never exceed T > 0. So every value below stays finite when M <= 1e100 (no NaN to lose in the
-        // minima and maxima); lanes with a larger M are not culled whatever they compute.
-        const bool usable = squared >= 1e-200 && squared <= 1e300;
-        for (int c = 0; c < 3; ++c) s[c][i] = usable ? n[c] : 0.0;
-        const double norm = usable ? std::sqrt(squared) : 0.0;
-        const double l1 = std::abs(s[0][i]) + std::abs(s[1][i]) + std::abs(s[2][i]);
-        threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
-      }
-      const auto dot = [&](int t, int k, int i) {
-        return s[0][i] * x[t][k][0][i] + s[1][i] * x[t][k][1][i] + s[2][i] * x[t][k][2][i];
-      };
-      try_direction<VertexFace>(dot, threshold, culled);
+  // A direction computed per lane from the lane's positions at `time` (make(time, i, p, n) writes it to n, p(k, c)
+  // being coordinate c of point k), used as a fixed vector: the rounding of its computation needs no bound.
+  const auto try_computed = [&](int time, const auto& make) INLINE_LAMBDA {
+    alignas(64) double s[3][kLanes];
+    for (int i = 0; i < kLanes; ++i) {
+      const auto p = [&](int k, int c) INLINE_LAMBDA { return x[time][k][c][i]; };
+      double n[3];
+      make(p, n);
+      const double squared = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+      // A vector too small for an accurate length or too large (or not finite) becomes the zero vector, whose
+      // projections never exceed T > 0. So every value below stays finite when M <= 1e100 (no NaN to lose in the
+      // minima and maxima); lanes with a larger M are not culled whatever they compute.
+      const bool usable = squared >= 1e-200 && squared <= 1e300;
+      for (int c = 0; c < 3; ++c) s[c][i] = usable ? n[c] : 0.0;
+      const double norm = usable ? std::sqrt(squared) : 0.0;
+      const double l1 = std::abs(s[0][i]) + std::abs(s[1][i]) + std::abs(s[2][i]);
+      threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
     }
+    const auto dot = [&](int t, int k, int i) INLINE_LAMBDA {
+      return s[0][i] * x[t][k][0][i] + s[1][i] * x[t][k][1][i] + s[2][i] * x[t][k][2][i];
+    };
+    try_direction<VertexFace>(dot, threshold, culled);
+  };
+  // Point k minus point j of a lane, into d.
+  const auto difference = [](const auto& p, int k, int j, double* d) INLINE_LAMBDA {
+    for (int c = 0; c < 3; ++c) d[c] = p(k, c) - p(j, c);
+  };
+  for (int time = 0; time < 2 && pass.normals; ++time) {
+    // The face normal (vertex-face) or the edges' cross product (edge-edge).
+    try_computed(time, [&](const auto& p, double* n) INLINE_LAMBDA {
+      double a[3], e[3];
+      difference(p, VertexFace ? 2 : 1, VertexFace ? 1 : 0, a);
+      difference(p, 3, VertexFace ? 1 : 2, e);
+      cross(a, e, n);
+    });
   }
   // Eq. (10)'s five directions (unnormalised): (1,0,0), (1,1,0), (1,0,1), (0,1,1), (1,1,1).
-  auto fixed = [&](double norm, double l1, const auto& dot) {
+  auto fixed = [&](double norm, double l1, const auto& dot) INLINE_LAMBDA {
     for (int i = 0; i < kLanes; ++i) {
       threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
     }
@@ -108,14 +129,43 @@ template <bool VertexFace>
   };
   if (pass.fixed) {
     const double root2 = std::sqrt(2.0), root3 = std::sqrt(3.0);
-    fixed(1.0, 1.0, [&](int t, int k, int i) { return x[t][k][0][i]; });
-    fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][0][i] + x[t][k][1][i]; });
-    fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][0][i] + x[t][k][2][i]; });
-    fixed(root2, 2.0, [&](int t, int k, int i) { return x[t][k][1][i] + x[t][k][2][i]; });
-    fixed(root3, 3.0, [&](int t, int k, int i) { return (x[t][k][0][i] + x[t][k][1][i]) + x[t][k][2][i]; });
+    fixed(1.0, 1.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][0][i]; });
+    fixed(root2, 2.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][0][i] + x[t][k][1][i]; });
+    fixed(root2, 2.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][0][i] + x[t][k][2][i]; });
+    fixed(root2, 2.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][1][i] + x[t][k][2][i]; });
+    fixed(root3, 3.0,
+          [&](int t, int k, int i) INLINE_LAMBDA { return (x[t][k][0][i] + x[t][k][1][i]) + x[t][k][2][i]; });
+  }
+  for (int time = 0; time < 2 && pass.in_plane; ++time) {
+    if constexpr (VertexFace) {
+      // n x e for the face normal n and each edge e of the face (separated_in_plane's directions).
+      for (const auto& [to, from] : {std::pair{2, 1}, std::pair{3, 2}, std::pair{1, 3}}) {
+        try_computed(time, [&, to = to, from = from](const auto& p, double* v) INLINE_LAMBDA {
+          double a[3], e[3], n[3], edge[3];
+          difference(p, 2, 1, a);
+          difference(p, 3, 1, e);
+          cross(a, e, n);
+          difference(p, to, from, edge);
+          cross(n, edge, v);
+        });
+      }
+    } else {
+      // e x (e x w) for each edge e, w joining the edges' midpoints (times two).
+      for (const int first : {0, 2}) {
+        try_computed(time, [&, first = first](const auto& p, double* v) INLINE_LAMBDA {
+          double e[3], w[3], ew[3];
+          difference(p, first + 1, first, e);
+          for (int c = 0; c < 3; ++c) w[c] = (p(2, c) + p(3, c)) - (p(0, c) + p(1, c));
+          cross(e, w, ew);
+          cross(e, ew, v);
+        });
+      }
+    }
   }
   for (int i = 0; i < b.count; ++i) out[i] = culled[i] > 0.0 && largest[i] <= kLargest ? 1 : 0;
 }
+
+#undef INLINE_LAMBDA
 
 // Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
 // the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
@@ -137,15 +187,6 @@ __attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, doubl
   filter_block<false>(b, thickness, pass, out);
 }
 #endif
-
-// True when every coordinate of the lane's pair is at most kLargest in magnitude (the block filter culls no other).
-bool within_range(const QueryBlock& b, int lane) {
-  for (int t = 0; t < 2; ++t)
-    for (int k = 0; k < 4; ++k)
-      for (int c = 0; c < 3; ++c)
-        if (!(std::abs(b.x[t][k][c][lane]) <= kLargest)) return false;
-  return true;
-}
 
 }  // namespace
 
@@ -189,8 +230,13 @@ BlockIsa fastest_block_isa() {
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled, BlockIsa isa,
                              BlockPass pass) {
+  if (!(settings.thickness >= 0.0 && std::isfinite(settings.thickness))) {  // as the per-pair filter: no verdict
+    std::fill(culled, culled + block.count, std::uint8_t{0});
+    return;
+  }
   const bool normals = options.use_primitive_normals;
-  const PassDirections directions{normals && pass != BlockPass::AfterNormals, pass != BlockPass::Normals};
+  const PassDirections directions{normals && pass != BlockPass::AfterNormals, pass != BlockPass::Normals,
+                                  normals && pass != BlockPass::Normals};
 #if defined(CLOTHCD_AVX2_PATHS)
   if (isa == BlockIsa::Avx512) {
     filter_avx512(block, settings.thickness, directions, culled);
@@ -202,12 +248,6 @@ void projection_filter_block(const QueryBlock& block, const CcdSettings& setting
 #else
   filter_baseline(block, settings.thickness, directions, culled);
 #endif
-  if (!normals || pass == BlockPass::Normals) return;
-  // The in-plane directions cost more per pair and are needed by few: they run on the survivors only, one at a time.
-  for (int lane = 0; lane < block.count; ++lane) {
-    if (culled[lane] || !within_range(block, lane)) continue;
-    culled[lane] = separated_in_plane(block.query(lane), settings) ? 1 : 0;
-  }
 }
 
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,

@@ -39,7 +39,8 @@ enum class BlockIsa {
 [[nodiscard]] BlockIsa fastest_block_isa();
 
 /// The in-plane directions of ProjectionFilterOptions::use_primitive_normals on one pair (the last directions the
-/// filter tries): true when one of them separates the primitives by more than the thickness over the whole step.
+/// per-pair filter tries; the block filter computes the same directions on its lanes): true when one of them
+/// separates the primitives by more than the thickness over the whole step.
 [[nodiscard]] bool separated_in_plane(const CcdQuery& query, const CcdSettings& settings);
 
 /// The directions one call of projection_filter_block tries. The primitives' normals cull most pairs a broad phase
@@ -55,8 +56,8 @@ enum class BlockPass {
 /// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only
 /// when, along one direction s, every point of one primitive lies more than thickness |s| beyond every point of the
 /// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled. With primitive
-/// normals, the lanes that survive the block's directions go through separated_in_plane, one at a time. With `pass`,
-/// only some of the directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
+/// normals, the in-plane directions too (those of separated_in_plane), on every lane. With `pass`, only some of the
+/// directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
 /// `isa` must be one of supported_block_isas().
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled,
