@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 
 #include "clothcd/detection/collision_detector.hpp"
@@ -49,6 +50,13 @@ std::vector<int> collision_faces(const TriangleMesh& mesh, const std::vector<Col
   return faces;
 }
 
+// A time in milliseconds to the microsecond (the full 17 digits of the other numbers say nothing here).
+std::string milliseconds(double ms) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(3) << ms;
+  return text.str();
+}
+
 void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& mesh,
                 const std::vector<Collision>& collisions, const DetectionStats& s, double load_ms) {
   const std::vector<int> faces = collision_faces(mesh, collisions);
@@ -61,12 +69,13 @@ void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& m
       << "\",\n  \"counts\": {\"candidates_vertex_face\": " << s.candidates_vertex_face
       << ", \"candidates_edge_edge\": " << s.candidates_edge_edge << ", \"culled\": " << s.culled
       << ", \"vertex_face\": " << vf << ", \"edge_edge\": " << ee << "},\n"
-      << "  \"times_ms\": {\"load\": " << load_ms << ", \"refit\": " << s.refit_ms << ", \"traversal\": "
-      << s.traversal_ms << ", \"filters\": " << s.culling_ms << ", \"exact\": " << s.exact_ms << "},\n";
+      << "  \"times_ms\": {\"load\": " << milliseconds(load_ms) << ", \"refit\": " << milliseconds(s.refit_ms)
+      << ", \"traversal\": " << milliseconds(s.traversal_ms) << ", \"filters\": " << milliseconds(s.culling_ms)
+      << ", \"exact\": " << milliseconds(s.exact_ms) << "},\n";
   if (o.filter == "network")
     out << "  \"network\": {\"dropped\": " << s.network_dropped << ", \"overruled\": " << s.network_overruled
-        << ", \"kept\": " << s.network_kept << ", \"network_ms\": " << s.network_ms
-        << ", \"filters_ms\": " << s.network_filters_ms << "},\n";
+        << ", \"kept\": " << s.network_kept << ", \"network_ms\": " << milliseconds(s.network_ms)
+        << ", \"filters_ms\": " << milliseconds(s.network_filters_ms) << "},\n";
   const char* separator = "";
   out << "  \"vertex_face\": [";
   std::size_t vertex_face_index = 0;
