@@ -74,12 +74,16 @@ template <bool VertexFace>
 [[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, PassDirections pass,
                                                 std::uint8_t* out) {
   const auto& x = b.x;
-  alignas(64) Lanes largest;  // M: the largest coordinate magnitude of the lane's pair
+  // M: the largest coordinate magnitude of the lane's pair, NaN when a coordinate is (so that the lane is not culled).
+  alignas(64) Lanes largest;
   for (int i = 0; i < kLanes; ++i) {
     double m = 0.0;
     for (int t = 0; t < 2; ++t)
       for (int k = 0; k < 4; ++k)
-        for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(x[t][k][c][i]));
+        for (int c = 0; c < 3; ++c) {
+          const double magnitude = std::abs(x[t][k][c][i]);
+          m = magnitude <= m || m != m ? m : magnitude;  // a NaN, once met, stays (std::max would drop it)
+        }
     largest[i] = m;
   }
   alignas(64) Lanes culled = {};

@@ -55,9 +55,9 @@ enum class BlockPass {
 /// projection_filter_culls(query, settings, options) with a coarser rounding bound (16 u |s|_1 max|coordinate| per
 /// projection instead of 8 u per difference; both far below the thickness at cloth scales): a pair is culled only
 /// when, along one direction s, every point of one primitive lies more than thickness |s| beyond every point of the
-/// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude are never culled. With primitive
-/// normals, the in-plane directions too (those of separated_in_plane), on every lane. With `pass`, only some of the
-/// directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
+/// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude or not a number are never culled.
+/// With primitive normals, the in-plane directions too (those of separated_in_plane), on every lane. With `pass`, only
+/// some of the directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
 /// `isa` must be one of supported_block_isas().
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled,

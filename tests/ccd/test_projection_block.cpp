@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -256,4 +257,24 @@ TEST_CASE("block projection filter: the Normals pass and the AfterNormals pass t
   // Each pass culls pairs the other does not (so neither is a no-op).
   CHECK(only_normals > 0);
   CHECK(only_after > 0);
+}
+
+TEST_CASE("block projection filter keeps pairs with a NaN or infinite coordinate", "[ccd][filters]") {
+  PairMaker maker(83);
+  std::vector<ccd::CcdQuery> queries;
+  for (int i = 0; i < 64; ++i) {
+    ccd::CcdQuery q = maker.random_pair(maker.kind(), 1.0, 0.1);  // far apart: culled when finite
+    const double bad = i % 2 ? std::numeric_limits<double>::quiet_NaN() : std::numeric_limits<double>::infinity();
+    (i % 4 < 2 ? q.start : q.end)[i % 4][i % 3] = bad;
+    queries.push_back(q);
+  }
+  for (const bool normals : {false, true}) {
+    for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+      INFO("isa " << static_cast<int>(isa) << " normals " << normals);
+      std::vector<std::uint8_t> culled;
+      ccd::detail::projection_filter_queries(queries, ccd::CcdSettings{0.004}, ccd::ProjectionFilterOptions{normals},
+                                             culled, isa);
+      for (const std::uint8_t c : culled) CHECK(c == 0);
+    }
+  }
 }
