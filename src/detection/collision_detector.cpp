@@ -4,8 +4,6 @@
 // collision test of every surviving pair.
 #include "clothcd/detection/collision_detector.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -22,16 +20,17 @@
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/network_culling.hpp"
 #include "pair_batch.hpp"
+#include "parallel_loop.hpp"
 #include "radix_sort.hpp"
 
 namespace clothcd {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = detail::StageClock;
+using detail::milliseconds_since;
 
-double milliseconds_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
+// Indices per chunk of the parallel loops over pairs.
+constexpr std::size_t kPairGrain = 256;
 
 struct Body {
   broadphase::BodyTopology topology;
@@ -73,18 +72,6 @@ void check_positions(const Vertices& positions, Eigen::Index rows, const std::st
                                 std::to_string(rows));
   }
   if (!positions.allFinite()) throw std::invalid_argument(what + " has a NaN or infinite coordinate");
-}
-
-// Runs `body(i)` for i in [0, n), on TBB threads when asked.
-template <class Function>
-void for_each_index(std::size_t n, bool parallel, const Function& body) {
-  if (!parallel || n < 512) {
-    for (std::size_t i = 0; i < n; ++i) body(i);
-    return;
-  }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) body(i);
-  });
 }
 
 }  // namespace
@@ -228,7 +215,7 @@ struct CollisionDetector::Impl {
     const ccd::detail::BlockIsa isa = ccd::detail::fastest_block_isa();
     // The non-penetration filter says nothing with a thickness (ccd::nonpenetration_filter_culls is false then).
     const bool nonpenetration = last_pass && filter == ccd::CcdFilter::Combined && ccd_settings.thickness == 0.0;
-    for_each_index(blocks.size(), settings.parallel, [&](std::size_t b) {
+    detail::for_each_index(blocks.size(), settings.parallel, kPairGrain, [&](std::size_t b) {
       const std::size_t first = blocks[b];
       const std::size_t segment_end = first < first_edge_edge ? first_edge_edge : positions.size();
       const std::size_t last = std::min(first + lanes, segment_end);
@@ -284,7 +271,7 @@ struct CollisionDetector::Impl {
     std::vector<ccd::CcdResult>& results = batch.results;
     if (network) {
       queries.resize(total);
-      for_each_index(total, settings.parallel, [&](std::size_t i) { gather(start, end, i, queries[i]); });
+      detail::for_each_index(total, settings.parallel, kPairGrain, [&](std::size_t i) { gather(start, end, i, queries[i]); });
       const NetworkCullingStats n = network->cull(queries, ccd_settings, settings.parallel, keep,
                                                   ccd::ProjectionFilterOptions{settings.projection_normals});
       stats.network_dropped = n.dropped;
@@ -295,7 +282,7 @@ struct CollisionDetector::Impl {
     } else if (filter == ccd::CcdFilter::Projection || filter == ccd::CcdFilter::Combined) {
       cull_in_blocks(start, end, ccd_settings);
     } else {
-      for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
+      detail::for_each_index(todo.size(), settings.parallel, kPairGrain, [&](std::size_t j) {
         // None or NonPenetration: the query is built on the stack.
         const std::size_t i = todo[j];
         ccd::CcdQuery query;
@@ -312,7 +299,7 @@ struct CollisionDetector::Impl {
     const ccd::CcdFilter applied = network ? ccd::CcdFilter::None : filter;
     // Outside the network mode the kept pairs' positions are gathered again rather than stored by the culling: on a
     // large cloth, storing a query per kept pair and reading it back was most of the stage's memory traffic.
-    for_each_index(todo.size(), settings.parallel, [&](std::size_t j) {
+    detail::for_each_index(todo.size(), settings.parallel, kPairGrain, [&](std::size_t j) {
       const std::size_t i = todo[j];
       if (!keep[i]) return;  // a culled pair gets no result: readers check keep first (less memory traffic)
       if (network) {

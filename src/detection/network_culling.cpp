@@ -4,35 +4,21 @@
 // queries, in parallel, each chunk with its own reused structure-of-arrays batch.
 #include "clothcd/detection/network_culling.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <stdexcept>
 
+#include "parallel_loop.hpp"
+
 namespace clothcd {
 namespace {
 
 constexpr std::size_t kChunk = 4096;
 
-using Clock = std::chrono::steady_clock;
-
-double milliseconds_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-template <class Function>
-void for_each_chunk(std::size_t chunks, bool parallel, const Function& body) {
-  if (!parallel || chunks < 2) {
-    for (std::size_t c = 0; c < chunks; ++c) body(c);
-    return;
-  }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) body(c);
-  });
-}
+using Clock = detail::StageClock;
+using detail::milliseconds_since;
 
 }  // namespace
 
@@ -61,7 +47,7 @@ NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& querie
   if (batches_.size() < chunks) batches_.resize(chunks);
 
   auto t = Clock::now();
-  for_each_chunk(chunks, parallel, [&](std::size_t c) {
+  detail::for_each_index(chunks, parallel, 1, [&](std::size_t c) {
     const std::size_t begin = c * kChunk;
     const std::size_t n = std::min(kChunk, total - begin);
     learning::compute_pair_features(queries.data() + begin, n, features_, batches_[c]);
@@ -71,7 +57,7 @@ NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& querie
 
   t = Clock::now();
   std::atomic<long> dropped{0}, overruled{0}, checked{0}, filter_culled{0}, kept{0};
-  for_each_chunk(chunks, parallel, [&](std::size_t c) {
+  detail::for_each_index(chunks, parallel, 1, [&](std::size_t c) {
     const std::size_t begin = c * kChunk;
     const std::size_t end = std::min(total, begin + kChunk);
     long n_dropped = 0, n_overruled = 0, n_checked = 0, n_filter_culled = 0, n_kept = 0;
