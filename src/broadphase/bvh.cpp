@@ -333,9 +333,12 @@ void Bvh::refit_moved(const SweptBoxes& boxes, const std::vector<std::uint8_t>& 
       bool touched = false;
       for (int p = 3 * node.face_begin; p < 3 * node.face_end && !touched; ++p) touched = moved[ordered_faces_[p]] != 0;
       if (!touched) continue;
-      // The leaf's primitives, as refit() derives them (its faces hold every vertex and edge it owns).
+      // The leaf's primitives with a moved vertex, as refit() derives them (its faces hold every vertex and edge it
+      // owns); the others keep their boxes, which only their own vertices' boxes determine.
+      auto is_moved = [&moved](int v) { return moved[static_cast<std::size_t>(v)] != 0; };
       for (int p = node.face_begin; p < node.face_end; ++p) {
         const int* f = ordered_faces_.data() + 3 * p;
+        if (!is_moved(f[0]) && !is_moved(f[1]) && !is_moved(f[2])) continue;
         FlatBox b = vertex_boxes[f[0]];
         b.expand(vertex_boxes[f[1]]);
         b.expand(vertex_boxes[f[2]]);
@@ -343,10 +346,12 @@ void Bvh::refit_moved(const SweptBoxes& boxes, const std::vector<std::uint8_t>& 
         packed_face_boxes_.set(p, b);
       }
       for (int v = vertex_offset_[node.face_begin]; v < vertex_offset_[node.face_end]; ++v) {
+        if (!is_moved(owned_vertices_[v])) continue;
         ordered_vertex_boxes_[v] = vertex_boxes[owned_vertices_[v]];
         packed_vertex_boxes_.set(v, ordered_vertex_boxes_[v]);
       }
       for (int e = edge_offset_[node.face_begin]; e < edge_offset_[node.face_end]; ++e) {
+        if (!is_moved(ordered_edges_[2 * e]) && !is_moved(ordered_edges_[2 * e + 1])) continue;
         FlatBox b = vertex_boxes[ordered_edges_[2 * e]];
         b.expand(vertex_boxes[ordered_edges_[2 * e + 1]]);
         ordered_edge_boxes_[e] = b;

@@ -335,6 +335,28 @@ void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* move
       });
 }
 
+// leaf_primitives_overlapping, Lanes::kWidth primitives at a time.
+template <class Lanes>
+int overlapping_lanes(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box, const PackedBox& packed,
+                       LeafScratch& scratch, std::vector<int>& out) {
+  const BvhNode& node = bvh.nodes()[leaf];
+  const Range range = kind == LeafPrimitives::Vertices ? vertex_range(bvh, node)
+                      : kind == LeafPrimitives::Edges  ? edge_range(bvh, node)
+                                                       : Range{node.face_begin, node.face_end};
+  const PackedBoxes& packed_boxes = kind == LeafPrimitives::Vertices ? bvh.packed_vertex_boxes()
+                                    : kind == LeafPrimitives::Edges  ? bvh.packed_edge_boxes()
+                                                                     : bvh.packed_face_boxes();
+  const FlatBox* boxes = kind == LeafPrimitives::Vertices ? bvh.ordered_vertex_boxes().data()
+                         : kind == LeafPrimitives::Edges  ? bvh.ordered_edge_boxes().data()
+                                                          : bvh.ordered_face_boxes().data();
+  const int selected = select_packed<Lanes>(packed_boxes, range.begin, range.end, packed, scratch.selected);
+  for (int k = 0; k < selected; ++k) {
+    const int i = scratch.selected[k];
+    if (boxes[i].overlaps(box)) out.push_back(i);
+  }
+  return range.end - range.begin;
+}
+
 #if defined(CLOTHCD_AVX2_PATHS)
 // The eight-lane instantiations, compiled for AVX2 with every call inlined into them (so that no function compiled
 // for the default target passes AVX2 vectors, and no AVX2 code leaks into shared inline functions).
@@ -349,9 +371,23 @@ __attribute__((target("avx2,bmi2"), flatten)) void within_wide(const BodyView& b
                                                           TraversalStats& stats, LeafScratch& scratch) {
   within_lanes<EightLanes>(body, na, nb, moved, out, stats, scratch);
 }
+
+__attribute__((target("avx2,bmi2"), flatten)) int overlapping_wide(const Bvh& bvh, int leaf, LeafPrimitives kind,
+                                                              const FlatBox& box, const PackedBox& packed,
+                                                              LeafScratch& scratch, std::vector<int>& out) {
+  return overlapping_lanes<EightLanes>(bvh, leaf, kind, box, packed, scratch, out);
+}
 #endif
 
 }  // namespace
+
+int leaf_primitives_overlapping(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
+                                const PackedBox& packed, LeafScratch& scratch, std::vector<int>& out) {
+#if defined(CLOTHCD_AVX2_PATHS)
+  if (scratch.wide_lanes) return overlapping_wide(bvh, leaf, kind, box, packed, scratch, out);
+#endif
+  return overlapping_lanes<FourLanes>(bvh, leaf, kind, box, packed, scratch, out);
+}
 
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
                        CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {

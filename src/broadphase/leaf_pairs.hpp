@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "clothcd/broadphase/candidates.hpp"
+#include "clothcd/broadphase/packed_boxes.hpp"
 #include "clothcd/broadphase/traversal.hpp"
 
 namespace clothcd::broadphase::detail {
@@ -20,6 +21,19 @@ struct LeafScratch {
   std::vector<int> selected;  ///< Primitives of one leaf whose box overlaps the other leaf's box
   std::vector<int> hits;      ///< Primitives of the other leaf that pass every test against one selected primitive
 };
+
+/// The primitives a leaf holds, by kind.
+enum class LeafPrimitives {
+  Vertices,  ///< Its owned vertices (positions in Bvh::owned_vertices).
+  Edges,     ///< Its owned edges (positions in Bvh::owned_edges).
+  Faces,     ///< Its faces (positions in Bvh::face_order).
+};
+
+/// Appends to `out` the positions of the primitives of kind `kind` in leaf `leaf` of `bvh` whose swept box overlaps
+/// `box` (`packed` = pack_box(box)): the packed pre-selection, then the double-precision boxes, so exactly those.
+/// Returns how many primitives of that kind the leaf holds (the tests made).
+int leaf_primitives_overlapping(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
+                                 const PackedBox& packed, LeafScratch& scratch, std::vector<int>& out);
 
 /// Candidate pairs of leaf `na` of body a and leaf `nb` of body b (different bodies) into `out`. With `moved` (flags
 /// per vertex of body a), only pairs with a moved vertex of body a are produced.

@@ -6,6 +6,7 @@
 /// Section 3.2.1 of Jin et al.: with sphere hierarchies the root spheres are tested first, the root AABBs are built and
 /// tested only when the spheres overlap, and only then does the search descend depth-first.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -24,13 +25,19 @@ struct BodyView {
   const Bvh* bvh = nullptr;                ///< Hierarchy refitted to `boxes` (unused by the brute-force reference).
 };
 
+/// A search restricted to moved vertices queries the hierarchies primitive by primitive when at most one vertex in
+/// this many moved (see TraversalSettings::moved_vertices).
+constexpr std::size_t kMovedQueryShare = 16;
+
 /// Search options.
 struct TraversalSettings {
   bool parallel = true;  ///< Split the search into tasks run by TBB (output order stays deterministic).
   /// Optional restriction for re-searching after a few vertices moved: flags (non-zero = moved) for the vertices of
   /// the searched body (find_self_candidates) or of the first body (find_pair_candidates). When set, exactly the
-  /// pairs of the unrestricted search that involve a moved vertex of that body are returned, and subtrees without one
-  /// are skipped. Must stay valid during the call; its size must be that body's vertex count.
+  /// pairs of the unrestricted search that involve a moved vertex of that body are returned. With at most one vertex
+  /// in kMovedQueryShare moved, the boxes of the moved primitives query the hierarchies (serially); with more, the
+  /// descent skips the subtrees without a moved vertex. Must stay valid during the call; its size must be that body's
+  /// vertex count.
   const std::vector<std::uint8_t>* moved_vertices = nullptr;
   /// Test leaf primitives eight at a time where the CPU has AVX2 (clothcd::avx2_supported()), else four at a time. The
   /// result is the same either way.
