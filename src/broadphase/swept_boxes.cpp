@@ -15,13 +15,12 @@ FlatBox empty_flat_box() {
   return FlatBox{{kInfinity, kInfinity, kInfinity}, {-kInfinity, -kInfinity, -kInfinity}};
 }
 
-void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes) {
-  const int vertex_count = static_cast<int>(start.rows());
-  boxes.vertices.resize(vertex_count);
-  boxes.edges.clear();
-  boxes.faces.clear();
-  const double* p = start.data();
-  const double* q = end.data();
+namespace {
+
+// The swept box of vertex v into `box`.
+void vertex_box(const Vertices& start, const Vertices& end, double thickness, int v, FlatBox& box) {
+  const double* p = start.data() + 3 * static_cast<std::ptrdiff_t>(v);
+  const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double half = 0.5 * thickness;
   // x - half rounds to nearest, off by at most half a unit in the last place; moving the result outwards by 2^-52 of
   // its magnitude (at least one unit in the last place, exact) and the smallest subnormal covers that rounding.
@@ -35,13 +34,27 @@ void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, doub
     const double r = x + half;
     return r + (std::fabs(r) * 0x1p-52 + 0x1p-1074);
   };
-  for (int v = 0; v < vertex_count; ++v) {
-    FlatBox& b = boxes.vertices[v];
-    for (int k = 0; k < 3; ++k) {
-      const double a = p[3 * v + k], c = q[3 * v + k];
-      b.min[k] = grown_min(a < c ? a : c);
-      b.max[k] = grown_max(a < c ? c : a);
-    }
+  for (int k = 0; k < 3; ++k) {
+    const double a = p[k], c = q[k];
+    box.min[k] = grown_min(a < c ? a : c);
+    box.max[k] = grown_max(a < c ? c : a);
+  }
+}
+
+}  // namespace
+
+void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes) {
+  const int vertex_count = static_cast<int>(start.rows());
+  boxes.vertices.resize(vertex_count);
+  boxes.edges.clear();
+  boxes.faces.clear();
+  for (int v = 0; v < vertex_count; ++v) vertex_box(start, end, thickness, v, boxes.vertices[v]);
+}
+
+void update_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness,
+                               const std::vector<std::uint8_t>& moved, SweptBoxes& boxes) {
+  for (int v = 0; v < static_cast<int>(moved.size()); ++v) {
+    if (moved[static_cast<std::size_t>(v)] != 0) vertex_box(start, end, thickness, v, boxes.vertices[v]);
   }
 }
 

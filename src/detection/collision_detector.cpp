@@ -132,7 +132,13 @@ struct CollisionDetector::Impl {
   // call), the cloth hierarchy refits just what holds them.
   void refit(const Vertices& start, const Vertices& end, bool only_moved) {
     const double thickness = settings.thickness;
-    broadphase::compute_swept_vertex_boxes(start, end, thickness, cloth.boxes);  // the hierarchies need no more
+    // Vertex boxes are all the hierarchies need; a re-test recomputes only the moved vertices' (the others' positions
+    // are those of the last call).
+    if (only_moved) {
+      broadphase::update_swept_vertex_boxes(start, end, thickness, moved, cloth.boxes);
+    } else {
+      broadphase::compute_swept_vertex_boxes(start, end, thickness, cloth.boxes);
+    }
     const broadphase::BvhUpdate update = only_moved
                                              ? cloth.bvh.update_moved(cloth.topology, cloth.boxes, start, end, moved)
                                              : cloth.bvh.update(cloth.topology, cloth.boxes, start, end);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/broadphase/swept_boxes.hpp"
@@ -68,4 +69,34 @@ TEST_CASE("boxes grow by half the thickness, not by all of it", "[broadphase][bo
   const SweptBoxes exact = two_point_boxes(a, apart, apart, a, 0.0);
   CHECK(exact.vertices[0].min[1] == a[1]);
   CHECK(exact.vertices[0].max[1] == apart[1]);
+}
+
+TEST_CASE("updating the boxes of moved vertices gives the boxes computed afresh", "[broadphase][boxes]") {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  const int n = 200;
+  Vertices start(n, 3), end(n, 3);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      start(i, c) = coordinate(random);
+      end(i, c) = start(i, c) + 0.1 * coordinate(random);
+    }
+  }
+  SweptBoxes updated;
+  clothcd::broadphase::compute_swept_vertex_boxes(start, end, 0.01, updated);
+  std::vector<std::uint8_t> moved(n, 0);
+  for (int i = 0; i < n; i += 7) {
+    moved[i] = 1;
+    end(i, i % 3) += 0.05;
+  }
+  clothcd::broadphase::update_swept_vertex_boxes(start, end, 0.01, moved, updated);
+  SweptBoxes fresh;
+  clothcd::broadphase::compute_swept_vertex_boxes(start, end, 0.01, fresh);
+  for (int i = 0; i < n; ++i) {
+    INFO("vertex " << i);
+    for (int c = 0; c < 3; ++c) {
+      CHECK(updated.vertices[i].min[c] == fresh.vertices[i].min[c]);
+      CHECK(updated.vertices[i].max[c] == fresh.vertices[i].max[c]);
+    }
+  }
 }

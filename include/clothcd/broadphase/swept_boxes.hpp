@@ -3,6 +3,7 @@
 /// Swept bounding boxes of every primitive of a body over one step: each box bounds the primitive at t0 and at t1
 /// (linear motion stays inside it) inflated by the thickness.
 
+#include <cstdint>
 #include <vector>
 
 #include "clothcd/broadphase/body_topology.hpp"
@@ -58,5 +59,10 @@ void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, co
 /// The vertex boxes only, as compute_swept_boxes computes them; `boxes.edges` and `boxes.faces` are left empty. Enough
 /// for a Bvh (which derives edge and face boxes from the vertex boxes in its own order) and for body_box().
 void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes);
+
+/// compute_swept_vertex_boxes for the vertices flagged in `moved` (non-zero, one flag per vertex) only: `boxes` must
+/// hold the boxes of every other vertex for these positions already (from the same thickness), which it keeps.
+void update_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness,
+                               const std::vector<std::uint8_t>& moved, SweptBoxes& boxes);
 
 }  // namespace clothcd::broadphase
