@@ -74,19 +74,19 @@ template <bool VertexFace>
 [[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, PassDirections pass,
                                                 std::uint8_t* out) {
   const auto& x = b.x;
-  // M: the largest coordinate magnitude of the lane's pair; infinite when a coordinate is beyond kLargest or not a
-  // number (std::max drops NaNs, so they are caught by the range test), so that the lane is never culled.
+  // M: the largest coordinate magnitude of the lane's pair; infinite when a coordinate is not a number (std::max drops
+  // NaNs: they are caught by `poison`, the sum of the coordinates times zero, NaN exactly when one is NaN or infinite),
+  // so that the lane is never culled. Plain arithmetic, so that the loop stays vectorized.
   alignas(64) Lanes largest;
   for (int i = 0; i < kLanes; ++i) {
-    double m = 0.0, in_range = 1.0;
+    double m = 0.0, poison = 0.0;
     for (int t = 0; t < 2; ++t)
       for (int k = 0; k < 4; ++k)
         for (int c = 0; c < 3; ++c) {
-          const double magnitude = std::abs(x[t][k][c][i]);
-          m = std::max(m, magnitude);
-          in_range = magnitude <= kLargest ? in_range : 0.0;  // selects, not branches: the loop stays vectorized
+          m = std::max(m, std::abs(x[t][k][c][i]));
+          poison += x[t][k][c][i] * 0.0;
         }
-    largest[i] = in_range > 0.0 ? m : HUGE_VAL;
+    largest[i] = poison == 0.0 ? m : HUGE_VAL;
   }
   alignas(64) Lanes culled = {};
   alignas(64) Lanes threshold;
