@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build python3-pip  # toolchain; pip downloads OpenNN's source distribution
   libeigen3-dev        # linear algebra in every public type
-  libassimp-dev        # reading OBJ, PLY, OFF, STL, 3DS, BLEND, DAE, glTF, ...
+  libassimp-dev        # reading 3DS, BLEND, DAE, glTF, ... (OBJ, PLY, OFF, STL have readers of their own)
   catch2               # the test framework
   libcli11-dev         # the clothcd program's subcommands and options
   libgmp-dev           # exact rational arithmetic: the CCD reference and its uncertain-case fallback

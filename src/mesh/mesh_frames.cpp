@@ -1,27 +1,19 @@
 // Two frames of one mesh (see mesh_frames.hpp).
 #include "clothcd/mesh/mesh_frames.hpp"
 
-#include <algorithm>
 #include <array>
-#include <cctype>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "clothcd/mesh/mesh_error.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
-#include "mesh/text_mesh_check.hpp"
+#include "mesh/mesh_readers.hpp"
 
 namespace clothcd {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool is_obj(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension == ".obj";
-}
 
 void check_same_faces(const TriangleMesh& start, const TriangleMesh& end, const fs::path& start_path,
                       const fs::path& end_path) {
@@ -30,10 +22,7 @@ void check_same_faces(const TriangleMesh& start, const TriangleMesh& end, const 
                                            start_path.string() + " has " + std::to_string(start.vertex_count()) +
                                            " (both frames need the same vertex numbering)");
   }
-  const bool differ = start.faces.rows() != end.faces.rows() || start.faces != end.faces ||
-                      (is_obj(start_path) && is_obj(end_path) &&
-                       detail::obj_face_vertices(start_path) != detail::obj_face_vertices(end_path));
-  if (differ) {
+  if (start.faces.rows() != end.faces.rows() || start.faces != end.faces) {
     throw MeshError(end_path.string(),
                     "its faces differ from those of " + start_path.string() + " (both frames need the same faces)");
   }
@@ -77,7 +66,8 @@ MeshFrames load_mesh_frames(const fs::path& start, const fs::path& end) {
   const TriangleMesh first = load_mesh(start, keep_all);
   const TriangleMesh second = load_mesh(end, keep_all);
   check_same_faces(first, second, start, end);
-  return weld(first, second);
+  if (detail::lower_extension(start) == ".stl" && detail::lower_extension(end) == ".stl") return weld(first, second);
+  return {first, second.vertices};
 }
 
 }  // namespace clothcd

@@ -16,10 +16,10 @@ struct MeshFrames {
 };
 
 /// Reads two files that hold the same mesh (same vertices in the same order, same faces) at two instants, in any
-/// format load_mesh reads; every vertex and face is kept as stored (nothing joined or dropped). Corners that the
-/// reader gives one vertex each (OBJ, STL) are welded where they sit at bit-identical positions in both frames.
-/// Throws MeshError naming the second file when the vertex counts or the faces differ; for OBJ files the faces are
-/// compared by the vertex numbers written in their `f` lines (the reader's per-corner vertices hide them).
+/// format load_mesh reads; every vertex and face is kept as stored (nothing joined or dropped), with the file's
+/// numbering and, for OBJ, PLY, OFF and STL, the file's doubles bit for bit. STL, which gives every triangle corners
+/// of its own, is the exception: when both files are STL, corners at bit-identical positions in both frames are
+/// welded into one vertex. Throws MeshError naming the second file when the vertex counts or the faces differ.
 [[nodiscard]] MeshFrames load_mesh_frames(const std::filesystem::path& start, const std::filesystem::path& end);
 
 }  // namespace clothcd
