@@ -1,5 +1,6 @@
 # CTest driver of `clothcd bench` (cmake -P). MODE=quick: `clothcd bench all --quick` must succeed and its report.md
-# must hold every section's heading. MODE=unknown: `clothcd bench nosuch` must fail and name the known sections.
+# must hold every section's heading; the scale section must have measured its tiny generated step with candidates and
+# the same collisions on every run. MODE=unknown: `clothcd bench nosuch` must fail and name the known sections.
 # Variables: CLOTHCD (the clothcd program), OUT (output folder), MODELS (obstacle model cache), MODE.
 if(MODE STREQUAL "unknown")
   execute_process(COMMAND ${CLOTHCD} bench nosuch --out ${OUT} RESULT_VARIABLE status ERROR_VARIABLE err)
@@ -19,14 +20,27 @@ if(NOT status EQUAL 0)
 endif()
 file(READ ${OUT}/report.md report)
 foreach(heading "# clothcd benchmark report" "## Contents" "## QEM simplification" "## OBB construction"
-        "## Detection time" "## CCD on the public benchmark" "Total time:")
+        "## Detection time" "## Scaling to large steps" "## CCD on the public benchmark" "Total time:")
   string(FIND "${report}" "${heading}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "${OUT}/report.md has no '${heading}'")
   endif()
 endforeach()
-foreach(file qem.csv obb.csv obb_tightness.png detection.csv)
+foreach(file qem.csv obb.csv obb_tightness.png detection.csv scale.csv)
   if(NOT EXISTS ${OUT}/${file})
     message(FATAL_ERROR "${OUT}/${file} was not written")
   endif()
 endforeach()
+
+# The scale section's tiny generated step: a row with candidate pairs, and one digest on one and two threads.
+file(STRINGS ${OUT}/scale.csv scale_rows REGEX "^thrown-8-small,")
+list(LENGTH scale_rows rows)
+if(NOT rows EQUAL 1)
+  message(FATAL_ERROR "${OUT}/scale.csv has no row for the generated step thrown-8-small")
+endif()
+string(REPLACE "," ";" cells "${scale_rows}")
+list(GET cells 3 candidates)
+list(GET cells 16 same)
+if(candidates LESS 1000 OR NOT same STREQUAL "yes")
+  message(FATAL_ERROR "scale section on thrown-8-small: ${candidates} candidates, same collisions on every run: ${same}")
+endif()

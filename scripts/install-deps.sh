@@ -19,6 +19,7 @@ packages=(
   libcgal-dev          # benchmark peer: Garland-Heckbert simplification, optimal OBB (bench/ only)
   libfcl-dev           # benchmark peer: AABB/OBB BVH broad phase (bench/ only)
   libqhull-dev         # convex hulls for the tight reference OBB and the simplified-model OBB (library)
+  python3-venv         # benchmark peer: the scale section's Python environment for the IPC Toolkit (bench/ only)
 )
 
 missing=()

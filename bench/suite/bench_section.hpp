@@ -17,7 +17,11 @@ struct BenchContext {
   std::filesystem::path obstacle_model_dir;          ///< The obstacle model cache (`clothcd meshes`, .cache/models).
   std::filesystem::path network_model_dir;           ///< The pair network to benchmark (models/default by default).
   std::optional<std::filesystem::path> ccd_queries;  ///< The public CCD benchmark's query folder, when present.
+  /// The shared real simulation steps (scalable-ccd-sample: one folder per scene with t0.ply, t1.ply, truth.json),
+  /// when present.
+  std::optional<std::filesystem::path> scalable_ccd;
   bool quick = false;                                ///< CI-sized run: fewer models, steps and repetitions.
+  bool part_of_all = false;  ///< Run by `clothcd bench all`: a section may leave out cases of minutes and gigabytes.
   std::function<void(const std::string&)> progress;  ///< Reports one step ("building OBBs on the cat"); never null.
 };
 

@@ -1,6 +1,7 @@
 // clothcd-bench: runs the benchmark sections (the paper's tables and figures, with peer libraries in the same run) and
 // writes their CSV and PNG files plus one Markdown report into the output folder.
 // Usage: clothcd-bench all|NAME --out DIR [--quick] [--models DIR] [--network DIR] [--ccd-queries DIR]
+//        [--scalable-ccd DIR]
 #include <CLI/CLI.hpp>
 
 #include <cctype>
@@ -47,6 +48,13 @@ std::optional<fs::path> default_ccd_queries() {
   return std::nullopt;
 }
 
+// The shared real simulation steps beside the checkout (../shared/data/scalable-ccd-sample), when present.
+std::optional<fs::path> default_scalable_ccd() {
+  const fs::path dir = kSourceDir.parent_path() / "shared" / "data" / "scalable-ccd-sample";
+  if (fs::is_directory(dir)) return dir;
+  return std::nullopt;
+}
+
 std::string section_names(const std::vector<Section>& sections) {
   std::string names = "all";
   for (const Section& s : sections) names += ", " + s.name;
@@ -80,7 +88,8 @@ int main(int argc, char** argv) {
   context.obstacle_model_dir = default_models();
   context.network_model_dir = default_network();
   context.ccd_queries = default_ccd_queries();
-  std::string ccd_queries;
+  context.scalable_ccd = default_scalable_ccd();
+  std::string ccd_queries, scalable_ccd;
   app.add_option("SECTION", which, "all, or one section: " + section_names(sections).substr(5))->required();
   app.add_option("--out", context.out_dir, "Folder for report.md and the CSV and PNG files (created)")->required();
   app.add_flag("--quick", context.quick, "CI-sized run: fewer models, steps and repetitions (under 2 minutes)");
@@ -89,6 +98,8 @@ int main(int argc, char** argv) {
   app.add_option("--network", context.network_model_dir, "Pair network model folder")->capture_default_str();
   app.add_option("--ccd-queries", ccd_queries, "The public CCD benchmark's query folder (default: "
                  "../shared/data/ccd-sample-queries beside the source tree, when present)");
+  app.add_option("--scalable-ccd", scalable_ccd, "The shared real simulation steps for the scale section (default: "
+                 "../shared/data/scalable-ccd-sample beside the source tree, when present)");
   std::string footer = "Sections:\n";
   for (const Section& s : sections) footer += "  " + s.name + ": " + s.summary + "\n";
   app.footer(footer);
@@ -115,6 +126,14 @@ int main(int argc, char** argv) {
     }
     context.ccd_queries = fs::path(ccd_queries);
   }
+  if (!scalable_ccd.empty()) {
+    if (!fs::is_directory(scalable_ccd)) {
+      std::cerr << "clothcd-bench: error: --scalable-ccd " << scalable_ccd << ": no such folder\n";
+      return 1;
+    }
+    context.scalable_ccd = fs::path(scalable_ccd);
+  }
+  context.part_of_all = which == "all";
   try {
     fs::create_directories(context.out_dir);
   } catch (const std::exception& e) {

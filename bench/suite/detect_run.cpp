@@ -1,0 +1,137 @@
+// `clothcd detect` in a child process, read back from its JSON (see detect_run.hpp).
+#include "detect_run.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "child_process.hpp"
+#include "learning/json_lite.hpp"
+
+namespace clothcd::bench {
+namespace {
+
+namespace json = learning::json;
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error(path.string() + ": cannot read");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+const json::Value& member(const json::Value& object, const std::string& key, const std::string& context) {
+  const json::Value* value = object.find(key);
+  if (value == nullptr) throw std::runtime_error(context + ": no \"" + key + "\"");
+  return *value;
+}
+
+// The integers of a JSON array nested to any depth, in order ([[1, 2], [3, 4]] -> 1 2 3 4).
+void integers(const json::Value& value, std::vector<int>& out) {
+  if (value.kind == json::Value::Kind::Number) out.push_back(static_cast<int>(value.number));
+  for (const json::Value& item : value.array) integers(item, out);
+}
+
+// The order-free key of a vertex-face pair {vertex, face} (2 numbers) or an edge-edge pair (4 numbers).
+CollisionKey collision_key(const std::vector<int>& n, const std::string& context) {
+  if (n.size() == 2) return {n[0], n[1], -1, -1};
+  if (n.size() != 4) throw std::runtime_error(context + ": a pair of " + std::to_string(n.size()) + " indices");
+  std::pair<int, int> a = std::minmax(n[0], n[1]), b = std::minmax(n[2], n[3]);
+  if (b < a) std::swap(a, b);
+  return {a.first, a.second, b.first, b.second};
+}
+
+// FNV-1a, 64 bits.
+class Digest {
+ public:
+  void add(const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) hash_ = (hash_ ^ bytes[i]) * 0x100000001b3ULL;
+  }
+  [[nodiscard]] std::string hex() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash_));
+    return text;
+  }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+};
+
+// One collision of the JSON: its key, conservative flag and toi.
+struct Entry {
+  CollisionKey key;
+  bool conservative = false;
+  double toi = 0;
+};
+
+std::vector<Entry> entries(const json::Value& root, const std::string& list, const std::string& context) {
+  std::vector<Entry> out;
+  for (const json::Value& item : member(root, list, context).array) {
+    std::vector<int> n;
+    integers(member(item, "pair", context), n);
+    const json::Value* conservative = item.find("conservative");
+    out.push_back({collision_key(n, context), conservative != nullptr && conservative->boolean,
+                   member(item, "toi", context).number});
+  }
+  return out;
+}
+
+}  // namespace
+
+DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
+                     const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus) {
+  const ChildRun child = run_child({clothcd.string(), "detect", t0.string(), t1.string(), "--out", json_out.string()},
+                                   cpus);
+  if (child.exit_code != 0)
+    throw std::runtime_error("clothcd detect " + t0.string() + " failed (exit " + std::to_string(child.exit_code) +
+                             "): " + child.output);
+  const std::string context = json_out.string();
+  const json::Value root = json::parse(read_text(json_out), context);
+  const json::Value& counts = member(root, "counts", context);
+  const json::Value& times = member(root, "times_ms", context);
+  DetectRun run;
+  run.candidates = static_cast<long>(member(counts, "candidates_vertex_face", context).number +
+                                     member(counts, "candidates_edge_edge", context).number);
+  run.culled = static_cast<long>(member(counts, "culled", context).number);
+  run.refit_ms = member(times, "refit", context).number;
+  run.traversal_ms = member(times, "traversal", context).number;
+  run.culling_ms = member(times, "filters", context).number;
+  run.exact_ms = member(times, "exact", context).number;
+  run.peak_rss_mb = child.peak_rss_mb;
+  std::vector<Entry> all = entries(root, "vertex_face", context);
+  for (const Entry& e : entries(root, "edge_edge", context)) all.push_back(e);
+  std::sort(all.begin(), all.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  Digest digest;
+  for (const Entry& e : all) {
+    std::uint64_t toi_bits = 0;
+    std::memcpy(&toi_bits, &e.toi, sizeof toi_bits);
+    digest.add(e.key.data(), sizeof e.key);
+    digest.add(&e.conservative, sizeof e.conservative);
+    digest.add(&toi_bits, sizeof toi_bits);
+    run.collisions.push_back(e.key);
+  }
+  run.digest = digest.hex();
+  return run;
+}
+
+TruthCheck check_truth(const std::filesystem::path& truth_json, const std::vector<CollisionKey>& found) {
+  const std::string context = truth_json.string();
+  const json::Value root = json::parse(read_text(truth_json), context);
+  TruthCheck check;
+  for (const char* list : {"vf", "ee"}) {
+    for (const json::Value& pair : member(root, list, context).array) {
+      std::vector<int> n;
+      integers(pair, n);
+      ++check.listed;
+      if (!std::binary_search(found.begin(), found.end(), collision_key(n, context))) ++check.missed;
+    }
+  }
+  return check;
+}
+
+}  // namespace clothcd::bench

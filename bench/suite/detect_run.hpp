@@ -1,0 +1,50 @@
+#pragma once
+/// @file
+/// One `clothcd detect T0 T1 --out FILE` run in a child process pinned to some CPUs: its counts, stage times, peak
+/// resident memory and a digest of its collisions, read back from the JSON it writes; and the ground-truth check of
+/// those collisions against a `truth.json` of the shared scenes.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace clothcd::bench {
+
+/// A collision as `clothcd detect --out` names it, in a form that does not depend on the order of its parts:
+/// vertex-face {vertex, face, -1, -1}; edge-edge {a0, a1, b0, b1} with a0 < a1, b0 < b1 and (a0, a1) < (b0, b1).
+using CollisionKey = std::array<int, 4>;
+
+/// What one detect run measured.
+struct DetectRun {
+  long candidates = 0;      ///< Vertex-face + edge-edge candidate pairs after the broad phase.
+  long culled = 0;          ///< Pairs the culling stage removed.
+  double refit_ms = 0;      ///< Hierarchy build or refit.
+  double traversal_ms = 0;  ///< Candidate search.
+  double culling_ms = 0;    ///< Culling stage.
+  double exact_ms = 0;      ///< Exact CCD.
+  double peak_rss_mb = 0;   ///< Peak resident memory of the whole `clothcd detect` process (loading included).
+  std::vector<CollisionKey> collisions;  ///< Every collision, sorted.
+  std::string digest;       ///< 16 hex digits over the sorted collisions, their conservative flags and tois.
+
+  /// Whole detection: hierarchy + candidates + culling + exact test.
+  [[nodiscard]] double whole_ms() const { return refit_ms + traversal_ms + culling_ms + exact_ms; }
+};
+
+/// Runs `clothcd detect t0 t1 --out json_out` (thickness 0, the default hierarchy and filters) on the first `cpus`
+/// CPUs and reads its JSON. Throws std::runtime_error with the program's output when it fails.
+[[nodiscard]] DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
+                                   const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus);
+
+/// Ground-truth pairs of `truth_json` (the shared scenes' format: "vf": [[vertex, face]...], "ee": [[[a0, a1],
+/// [b0, b1]]...]) that `found` (sorted) lacks, and how many pairs the file lists.
+struct TruthCheck {
+  long listed = 0;  ///< Pairs in the file.
+  long missed = 0;  ///< Of those, not among the collisions.
+};
+
+/// Checks `found` against `truth_json`; throws std::runtime_error naming the file when it cannot be read.
+[[nodiscard]] TruthCheck check_truth(const std::filesystem::path& truth_json, const std::vector<CollisionKey>& found);
+
+}  // namespace clothcd::bench
