@@ -326,7 +326,10 @@ SectionReport run_scale(const BenchContext& context) {
                         "peak RSS (1 thread)", "collisions", "digest", "ipctk candidates", "ipctk, 1 thread",
                         "ipctk, 2 threads", "ipctk 1T / ours 1T"},
                        rows);
-  md += "\nChart [scale_ns_per_candidate.png](scale_ns_per_candidate.png): ns per candidate pair, per step: " +
+  std::string steps;
+  for (const SceneResult& r : results) steps += (steps.empty() ? "" : ", ") + r.scene.name;
+  md += "\nChart [scale_ns_per_candidate.png](scale_ns_per_candidate.png): ns per candidate pair, per step (left to "
+        "right: " + steps + "): " +
         legend({"ours, one thread", "ours, two threads", "ipctk LBVH, one thread", "ipctk LBVH, two threads"}) +
         " (ipctk by its own candidate count).\n\n";
   md += "Targets of the scaling issue:\n\n";
