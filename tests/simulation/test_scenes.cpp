@@ -109,11 +109,9 @@ TEST_CASE("rabbit scene: the cloth reaches the model without intersecting", "[si
   CHECK(run_without_intersections(scene_named("rabbit"), 28) > 0);
 }
 
-TEST_CASE("walker scene: the moving body stays clear of the falling cloth", "[simulation][scene]") {
-  Scene scene = scene_named("walker");
-  run_without_intersections(scene, 20);
-  // Moved 20 steps along +x.
-  CHECK(scene.obstacles[0].positions_at(20).col(0).mean() > scene.obstacles[0].positions_at(0).col(0).mean() + 0.1);
+TEST_CASE("walker scene: the walking body reaches the falling cloth without intersecting it", "[simulation][scene]") {
+  // The body walks under the falling cloth for 100 steps; the cloth comes within 1 cm of it in the first 160.
+  CHECK(run_without_intersections(scene_named("walker"), 160) > 0);
 }
 
 TEST_CASE("the same run gives the same state hash", "[simulation][determinism]") {
