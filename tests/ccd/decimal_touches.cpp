@@ -145,6 +145,35 @@ ccd::CcdQuery vertex_onto_wide_face(DecimalGrid& grid) {
   return make(PairKind::VertexFace, {from, face[0], face[1], face[2]}, {contact, face[0], face[1], face[2]});
 }
 
+// A point near `near` whose coordinates sum exactly (in rationals) to `sum`: x and y on the grid, z = sum - x - y
+// rounded, drawn again until that rounding was exact (at most 200 times; then a point within a rounding error of
+// the plane, which the reference labels like any other).
+Vector3d on_diagonal_plane(DecimalGrid& grid, double sum, const Vector3d& near, double spread) {
+  Vector3d p;
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    p = grid.snap(near + grid.displacement(spread));
+    p.z() = (sum - p.x()) - p.y();
+    if (mpq_class(p.x()) + mpq_class(p.y()) + mpq_class(p.z()) == mpq_class(sum)) break;
+  }
+  return p;
+}
+
+// Vertex-face on the plane x + y + z = s (exactly, in rationals): the face's corners and the vertex at t = 1 all lie
+// on it, the vertex near the face's centroid, arriving along the plane's normal (1, 1, 1), a direction of eq. (10).
+// Their projections x + y + z are equal in exact arithmetic but rounded twice in the filters (in the block filter
+// without a difference first): only the rounding term keeps the fixed direction from separating them.
+ccd::CcdQuery vertex_onto_diagonal_face(DecimalGrid& grid) {
+  const Vector3d center = grid.point();
+  const double sum = grid.snap(center.sum());
+  std::array<Vector3d, 3> face;
+  for (Vector3d& corner : face) corner = on_diagonal_plane(grid, sum, center, 1.0);
+  const Vector3d contact = on_diagonal_plane(grid, sum, (face[0] + face[1] + face[2]) / 3.0, 0.02);
+  const Vector3d normal = Vector3d::Ones().normalized() * (grid.coin() ? 1.0 : -1.0);
+  const Vector3d from =
+      grid.snap(contact + grid.scale() * (grid.uniform(0.1, 1.0) * normal + 0.3 * grid.uniform(-1, 1) * grid.unit()));
+  return make(PairKind::VertexFace, {from, face[0], face[1], face[2]}, {contact, face[0], face[1], face[2]});
+}
+
 // Edge-edge, edge a arriving on edge b at t = 1 from one side. Mode 0: a through a point of b (rounded); 1: an end of
 // a on b (rounded); 2: a shared end point (equal doubles, exact); 3: a along y crossing b along x in a plane z = c
 // (exact).
@@ -303,9 +332,10 @@ const std::vector<LabelledTouch>& decimal_touches() {
             }
             if (exact) add(nudged(grid, at_end), TouchFamily::Nudged, exponent);
             if (kind == PairKind::VertexFace) {
-              const ccd::CcdQuery wide = vertex_onto_wide_face(grid);
-              add(wide, TouchFamily::AtEnd, exponent);
-              add(reversed(wide), TouchFamily::AtStart, exponent);
+              for (const ccd::CcdQuery& on_plane : {vertex_onto_wide_face(grid), vertex_onto_diagonal_face(grid)}) {
+                add(on_plane, TouchFamily::AtEnd, exponent);
+                add(reversed(on_plane), TouchFamily::AtStart, exponent);
+              }
             }
             if (i % 15 == 0) add(coplanar(grid, kind), TouchFamily::Coplanar, exponent);
           }

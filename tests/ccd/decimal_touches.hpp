@@ -9,7 +9,8 @@ namespace clothcd::test {
 
 /// How a decimal touch query was built.
 enum class TouchFamily {
-  AtEnd,     ///< The primitives meet at t = 1 (vertex on the face, an edge through the other edge), approaching.
+  AtEnd,     ///< The primitives meet at t = 1 (vertex on the face, an edge through the other edge), approaching;
+             ///< also vertices onto wide faces with exact normals and onto faces on the plane x + y + z = s.
   AtStart,   ///< An AtEnd query run backwards: the primitives meet at t = 0 and move apart.
   Interior,  ///< Contact at an interior time: an AtEnd motion prolonged, or a point sliding along an axis exactly
              ///< through a corner of the other primitive.

@@ -95,7 +95,7 @@ TEST_CASE("decimal touches: exact and near touches with decimal coordinates agai
     int total = 0;
     for (std::size_t f = 0; f < hits.size(); ++f) {
       INFO("family " << f << ": " << hits[f] << " collide, " << misses[f] << " miss");
-      CHECK(hits[f] > 100);  // both answers: a generator that always (or never) touches proves little
+      CHECK(hits[f] > 50);  // both answers: a generator that always (or never) touches proves little
       CHECK(misses[f] > 30);
       total += hits[f];
     }
