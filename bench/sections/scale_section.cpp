@@ -238,14 +238,15 @@ SectionReport run_scale(const BenchContext& context) {
              r.peer_one ? std::to_string(r.peer_one->candidates) : "", opt(r.peer_one.has_value(),
              r.peer_one ? r.peer_one->ms : 0, 6), opt(r.peer_two.has_value(), r.peer_two ? r.peer_two->ms : 0, 6),
              opt(r.peer_one.has_value(), peer_ratio, 4)});
-    rows.push_back({r.scene.name, std::to_string(r.scene.faces), number(static_cast<double>(r.one.candidates), 4),
+    rows.push_back({r.scene.name, std::to_string(r.scene.faces), std::to_string(r.one.candidates),
                     fixed(r.one.refit_ms, 1) + " / " + fixed(r.one.traversal_ms, 1) + " / " +
                         fixed(r.one.culling_ms, 1) + " / " + fixed(r.one.exact_ms, 1),
                     ms(whole), fixed(per, 1), has_two ? ms(r.two.whole_ms()) : "-",
-                    has_two ? fixed(speedup, 2) + "x" : "-", mb(r.peak_rss_one),
+                    has_two ? fixed(speedup, 2) + "x" : "-",
+                    fixed(r.peak_rss_one, 1) + (has_two ? " / " + fixed(r.peak_rss_two, 1) : "") + " MB",
                     std::to_string(r.one.collisions.size()) + (r.same_collisions ? "" : " (**runs differ**)"),
                     "`" + r.one.digest + "`",
-                    r.peer_one ? number(static_cast<double>(r.peer_one->candidates), 4) : "-",
+                    r.peer_one ? std::to_string(r.peer_one->candidates) : "-",
                     r.peer_one ? ms(r.peer_one->ms) : peer_status, r.peer_two ? ms(r.peer_two->ms) : "-",
                     r.peer_one ? fixed(peer_ratio, 2) : "-"});
     const auto ns_per = [](double t, long n) { return 1e6 * t / static_cast<double>(std::max(1L, n)); };
@@ -314,7 +315,8 @@ SectionReport run_scale(const BenchContext& context) {
         ". Generated steps: N bodies (UV spheres, cloth sheets, fish of about 1 unit) on a lattice of 1.5-unit "
         "cells, each thrown about a cell in a random direction with a turn (bench/suite/thrown_bodies.hpp; the same "
         "bits from the same seed), written as ASCII PLY.";
-  if (context.scalable_ccd) md += " Real steps: " + context.scalable_ccd->string() + ".";
+  if (context.scalable_ccd) md += " Real steps: rod-twist and cloth-funnel of " + context.scalable_ccd->filename().string() +
+                                 " (real simulation steps with ground truth).";
   else md += " Real steps: not run (no ../shared/data/scalable-ccd-sample; see --scalable-ccd).";
   if (context.part_of_all && !context.quick)
     md += " Part of `clothcd bench all`: the largest generated step (over 30M candidates) runs only in "
@@ -323,7 +325,7 @@ SectionReport run_scale(const BenchContext& context) {
   md += "\n\n";
   md += markdown_table({"step", "faces", "candidates", "ms build+refit / search / culling / exact (1 thread)",
                         "whole, 1 thread", "ns / candidate", "whole, 2 threads", "2T speed-up",
-                        "peak RSS (1 thread)", "collisions", "digest", "ipctk candidates", "ipctk, 1 thread",
+                        "peak RSS 1T / 2T", "collisions", "digest", "ipctk candidates", "ipctk, 1 thread",
                         "ipctk, 2 threads", "ipctk 1T / ours 1T"},
                        rows);
   std::string steps;
