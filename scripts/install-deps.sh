@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs clothcd's Debian dependencies (skips apt when every package is already installed).
+# Installs clothcd's Debian dependencies (skips apt when every package is already installed). With --fuzz, also clang and
+# its libFuzzer and sanitizer runtime, which scripts/fuzz.sh needs (nothing else does).
 set -euo pipefail
 
 packages=(
@@ -21,6 +22,9 @@ packages=(
   libqhull-dev         # convex hulls for the tight reference OBB and the simplified-model OBB (library)
   python3-venv         # benchmark peer: the scale section's Python environment for the IPC Toolkit (bench/ only)
 )
+if [[ "${1:-}" == "--fuzz" ]]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

@@ -1,0 +1,14 @@
+// libFuzzer target: the OBJ reader on any bytes. It returns a mesh whose indices and coordinates are valid, or throws
+// MeshError.
+#include "clothcd/mesh/mesh_error.hpp"
+#include "fuzz_support.hpp"
+#include "mesh/mesh_readers.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    clothcd::fuzz::require_valid(
+        clothcd::detail::read_obj(std::string_view(reinterpret_cast<const char*>(data), size), "input.obj"));
+  } catch (const clothcd::MeshError&) {
+  }
+  return 0;
+}
