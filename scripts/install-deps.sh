@@ -20,7 +20,9 @@ packages=(
   libcgal-dev          # benchmark peer: Garland-Heckbert simplification, optimal OBB (bench/ only)
   libfcl-dev           # benchmark peer: AABB/OBB BVH broad phase (bench/ only)
   libqhull-dev         # convex hulls for the tight reference OBB and the simplified-model OBB (library)
-  python3-venv         # benchmark peer: the scale section's Python environment for the IPC Toolkit (bench/ only)
+  libpugixml-dev       # reading a trained network's XML at run time (the library; OpenNN is needed only to train)
+  python3-dev          # the Python package (pip install .)
+  python3-venv         # the Python package's tests; the scale bench section's Python environment for the IPC Toolkit
 )
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang libclang-rt-14-dev)

@@ -4,6 +4,8 @@
 // queries, in parallel, each chunk with its own reused structure-of-arrays batch.
 #include "clothcd/detection/network_culling.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -22,14 +24,26 @@ using detail::milliseconds_since;
 
 }  // namespace
 
+namespace {
+
+// <folder of the file holding this library's code>/CLOTHCD_LIBDIR_TO_MODEL_DIR: the model installed beside the library,
+// wherever the installed prefix was moved; empty when the folder is unknown.
+std::string model_dir_beside_library() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&default_network_model_dir), &info) == 0 || info.dli_fname == nullptr) return {};
+  return (std::filesystem::path(info.dli_fname).parent_path() / CLOTHCD_LIBDIR_TO_MODEL_DIR).lexically_normal().string();
+}
+
+}  // namespace
+
 std::string default_network_model_dir() {
   std::error_code error;
+  const std::string installed = model_dir_beside_library();
   const std::string source = CLOTHCD_DEFAULT_MODEL_DIR;
-  const std::string installed = CLOTHCD_INSTALLED_MODEL_DIR;
+  if (!installed.empty() && std::filesystem::is_directory(installed, error)) return installed;
   if (std::filesystem::is_directory(source, error)) return source;
-  if (std::filesystem::is_directory(installed, error)) return installed;
-  throw std::runtime_error("no default pair network: neither " + source + " nor " + installed +
-                           " exists (pass a model path)");
+  throw std::runtime_error("no default pair network: neither " + (installed.empty() ? std::string("the installed copy")
+                           : installed) + " nor " + source + " exists (pass a model path)");
 }
 
 NetworkCuller::NetworkCuller(const std::string& model)

@@ -1,6 +1,6 @@
 #pragma once
-// A cheap look at a model file before an XML parser reads it: tinyxml2 (OpenNN's parser) descends recursively, so a
-// file nested deeply enough exhausts the stack, and it holds the whole file in memory.
+// A cheap look at a model file before an XML parser reads it: a recursive parser (OpenNN's tinyxml2) exhausts the
+// stack on a file nested deeply enough, and every parser holds the whole file in memory.
 
 #include <string>
 

@@ -170,7 +170,7 @@ TrainingReport train_pair_network(const PairDataset& dataset, const TrainingSett
   // The runtime path: read back the file as the library will, so the card describes exactly what was saved.
   NetworkWeights weights;
   try {
-    weights = backend::read_network_weights(network_part);
+    weights = read_network_weights(network_part);
   } catch (const std::runtime_error& e) {
     std::filesystem::remove(network_part);
     throw std::runtime_error(std::string("training gave an unusable network (") + e.what() +

@@ -9,10 +9,8 @@
 #include "learning/model_file_check.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include <opennn/opennn.h>
@@ -196,131 +194,6 @@ OpennnTraining OpennnTraining::run(const OpennnData& data, const OpennnTrainSett
   result.selection_error = loss->calculate_selection_error();
   result.epochs = outcome.epochs_number;
   return result;
-}
-
-namespace {
-
-// Every whitespace-separated token of the numeric elements must be a finite number.
-void check_numbers(const tinyxml2::XMLElement* element, const std::string& path) {
-  for (; element; element = element->NextSiblingElement()) {
-    const std::string name = element->Name();
-    if ((name == "Parameters" || name == "Minimum" || name == "Maximum" || name == "DecisionThreshold") &&
-        element->GetText()) {
-      std::istringstream tokens(element->GetText());
-      std::string token;
-      while (tokens >> token) {
-        char* end = nullptr;
-        const double value = std::strtod(token.c_str(), &end);
-        if (end != token.c_str() + token.size() || !std::isfinite(value))
-          throw std::runtime_error(path + ": <" + name + "> holds '" + token + "', not a finite number");
-      }
-    }
-    check_numbers(element->FirstChildElement(), path);
-  }
-}
-
-// The whitespace-separated tokens of `element`'s text (none for a missing element or empty text).
-std::vector<std::string> tokens_of(const tinyxml2::XMLElement* element) {
-  std::vector<std::string> tokens;
-  if (!element || !element->GetText()) return tokens;
-  std::istringstream text(element->GetText());
-  for (std::string token; text >> token;) tokens.push_back(token);
-  return tokens;
-}
-
-// The count in `element`: one integer in [1, limit], else a clear error naming the element.
-std::size_t count_of(const tinyxml2::XMLElement* element, const char* name, std::size_t limit,
-                     const std::string& path) {
-  const std::vector<std::string> tokens = tokens_of(element);
-  char* end = nullptr;
-  const long long value = tokens.size() == 1 ? std::strtoll(tokens[0].c_str(), &end, 10) : 0;
-  if (tokens.size() != 1 || end != tokens[0].c_str() + tokens[0].size() || value < 1 ||
-      static_cast<unsigned long long>(value) > limit)
-    throw std::runtime_error(path + ": <" + name + "> must hold one whole number in 1.." + std::to_string(limit) +
-                             (tokens.empty() ? std::string(", it is empty") : ", it holds '" + tokens[0] + "'"));
-  return static_cast<std::size_t>(value);
-}
-
-// The shape the run-time network reads, checked before OpenNN parses the file (OpenNN allocates whatever sizes the
-// file states and reports some faults only on its standard error): input and scaling counts, the perceptron
-// architecture (at most kMaxLayerNeurons per layer), one logistic activation per layer, exactly the number of
-// parameters the architecture needs, and a probabilistic layer of the last layer's width.
-void check_structure(const tinyxml2::XMLElement* root, const std::string& path) {
-  constexpr std::size_t kMaxInputs = 1000;
-  const std::size_t inputs = count_of(root->FirstChildElement("Inputs")->FirstChildElement("InputsNumber"),
-                                      "InputsNumber", kMaxInputs, path);
-  const tinyxml2::XMLElement* scaling = root->FirstChildElement("ScalingLayer");
-  if (count_of(scaling->FirstChildElement("ScalingNeuronsNumber"), "ScalingNeuronsNumber", kMaxInputs, path) != inputs)
-    throw std::runtime_error(path + ": <ScalingNeuronsNumber> differs from <InputsNumber> (" + std::to_string(inputs) + ")");
-  std::size_t scaling_neurons = 0;
-  for (auto* n = scaling->FirstChildElement("ScalingNeuron"); n; n = n->NextSiblingElement("ScalingNeuron")) {
-    ++scaling_neurons;
-  }
-  if (scaling_neurons != inputs)
-    throw std::runtime_error(path + ": the scaling layer lists " + std::to_string(scaling_neurons) +
-                             " <ScalingNeuron> elements for " + std::to_string(inputs) + " inputs");
-  const tinyxml2::XMLElement* perceptron = root->FirstChildElement("MultilayerPerceptron");
-  std::vector<std::size_t> architecture;
-  for (const std::string& token : tokens_of(perceptron->FirstChildElement("Architecture"))) {
-    char* end = nullptr;
-    const long long width = std::strtoll(token.c_str(), &end, 10);
-    if (end != token.c_str() + token.size() || width < 1 || static_cast<std::size_t>(width) > kMaxInputs)
-      throw std::runtime_error(path + ": <Architecture> holds '" + token + "', not a width in 1.." +
-                               std::to_string(kMaxInputs));
-    architecture.push_back(static_cast<std::size_t>(width));
-  }
-  if (architecture.size() < 2 || architecture.front() != inputs)
-    throw std::runtime_error(path + ": <Architecture> must list the " + std::to_string(inputs) +
-                             " inputs and then at least one layer width");
-  std::size_t parameters = 0;
-  for (std::size_t l = 1; l < architecture.size(); ++l) {
-    if (architecture[l] > kMaxLayerNeurons)
-      throw std::runtime_error(path + ": a layer of <Architecture> has " + std::to_string(architecture[l]) +
-                               " neurons, at most " + std::to_string(kMaxLayerNeurons) + " are supported");
-    parameters += (architecture[l - 1] + 1) * architecture[l];
-  }
-  const std::vector<std::string> activations = tokens_of(perceptron->FirstChildElement("LayersActivationFunction"));
-  if (activations.size() != architecture.size() - 1)
-    throw std::runtime_error(path + ": <LayersActivationFunction> names " + std::to_string(activations.size()) +
-                             " activations for " + std::to_string(architecture.size() - 1) + " layers");
-  for (const std::string& activation : activations)
-    if (activation != "Logistic")
-      throw std::runtime_error(path + ": activation '" + activation + "' is not supported (only Logistic)");
-  const std::size_t found = tokens_of(perceptron->FirstChildElement("Parameters")).size();
-  if (found != parameters)
-    throw std::runtime_error(path + ": <Parameters> holds " + std::to_string(found) + " numbers, the architecture needs " +
-                             std::to_string(parameters) + " (truncated or edited model)");
-  if (count_of(root->FirstChildElement("ProbabilisticLayer")->FirstChildElement("ProbabilisticNeuronsNumber"),
-               "ProbabilisticNeuronsNumber", kMaxLayerNeurons, path) != architecture.back())
-    throw std::runtime_error(path + ": <ProbabilisticNeuronsNumber> differs from the last layer's width");
-}
-
-}  // namespace
-
-NetworkWeights read_network_weights(const std::string& path) {
-  check_model_file_shape(path);
-  tinyxml2::XMLDocument document;
-  const tinyxml2::XMLError status = document.LoadFile(path.c_str());
-  if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED)
-    throw std::runtime_error(path + ": model file not found or unreadable");
-  if (status != tinyxml2::XML_SUCCESS)
-    throw std::runtime_error(path + ": not a well-formed XML model (truncated or corrupt): " +
-                             std::string(tinyxml2::XMLDocument::ErrorIDToName(status)));
-  const tinyxml2::XMLElement* root = document.FirstChildElement("NeuralNetwork");
-  if (!root) throw std::runtime_error(path + ": no <NeuralNetwork> element: not an OpenNN model");
-  for (const char* part : {"Inputs", "ScalingLayer", "MultilayerPerceptron", "ProbabilisticLayer"})
-    if (!root->FirstChildElement(part)) throw std::runtime_error(path + ": the model lacks <" + part + ">");
-  check_numbers(root, path);
-  check_structure(root, path);
-  const OpennnNetwork network = OpennnNetwork::load(path);
-  NetworkWeights weights;
-  try {
-    weights = network.export_weights();
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path + ": " + e.what());
-  }
-  validate_network_weights(weights, path);
-  return weights;
 }
 
 double opennn_area_under_curve(const std::vector<double>& labels, const std::vector<double>& scores) {

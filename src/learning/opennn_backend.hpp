@@ -66,11 +66,6 @@ struct OpennnTraining {
   [[nodiscard]] static OpennnTraining run(const OpennnData& data, const OpennnTrainSettings& settings);
 };
 
-/// Reads a model file for clothcd's runtime: tinyxml2 must parse it, every number of the scaling, perceptron and
-/// probabilistic layers must be finite (OpenNN itself would silently read "nan" as a truncated vector), then OpenNN
-/// loads it and its weights are exported and validated. Throws std::runtime_error naming the file and the problem.
-[[nodiscard]] NetworkWeights read_network_weights(const std::string& path);
-
 /// OpenNN's own AUC (O(positives x negatives)) of scores against 0/1 labels, for cross-checking ours in tests.
 [[nodiscard]] double opennn_area_under_curve(const std::vector<double>& labels, const std::vector<double>& scores);
 

@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 #include "clothcd/cpu_features.hpp"
-#include "learning/opennn_backend.hpp"
 
 namespace clothcd::learning {
 namespace {
@@ -75,7 +74,7 @@ PairClassifier PairClassifier::load(const std::string& model, const FeatureSetti
   if (card.features != features)
     throw std::runtime_error(files.card + ": trained on " + std::to_string(card.features.size()) +
                              " features that differ from the " + std::to_string(features.size()) + " computed here");
-  NetworkWeights weights = backend::read_network_weights(files.network);
+  NetworkWeights weights = read_network_weights(files.network);
   if (weights.input_names != card.inputs)
     throw std::runtime_error(files.network + ": the network has " + std::to_string(weights.input_count()) +
                              " inputs, its model card lists " + std::to_string(card.inputs.size()) +

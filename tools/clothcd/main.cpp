@@ -4,6 +4,7 @@
 #include <new>
 #include <string>
 
+#include "clothcd/version.hpp"
 #include "commands.hpp"
 
 namespace {
@@ -29,6 +30,7 @@ std::string usage_error_message(CLI::App& app, int argc, char** argv, const CLI:
 int main(int argc, char** argv) {
   CLI::App app{"clothcd: cloth collision detection (Jin et al.'s method, done safely)", "clothcd"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("clothcd ") + clothcd::version(), "Print the version and exit");
   clothcd::cli::add_info_command(app);
   clothcd::cli::add_convert_command(app);
   clothcd::cli::add_meshes_command(app);

@@ -17,8 +17,9 @@
 
 namespace clothcd {
 
-/// The committed default model directory (models/default): the source tree's copy when it exists, else the installed
-/// copy (<prefix>/share/clothcd/models/default). Throws std::runtime_error naming both paths when neither exists.
+/// The committed default model directory (models/default): the installed copy beside the library
+/// (<library folder>/../share/clothcd/models/default, so a moved prefix still finds it) when it exists, else the source
+/// tree's copy. Throws std::runtime_error naming both paths when neither exists.
 [[nodiscard]] std::string default_network_model_dir();
 
 /// Counts and times of one NetworkCuller::cull call.

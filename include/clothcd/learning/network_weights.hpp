@@ -33,4 +33,10 @@ struct NetworkWeights {
 /// std::runtime_error "<context>: <problem>" otherwise.
 void validate_network_weights(const NetworkWeights& weights, const std::string& context);
 
+/// Reads a trained network's XML (as OpenNN 0.56.2 writes it) without OpenNN: the file must be well-formed, every
+/// number of the scaling, perceptron and probabilistic layers finite, the layer sizes consistent (at most
+/// kMaxLayerNeurons neurons per layer), the scaling min-max, the activations logistic and the probabilistic layer
+/// binary. Throws std::runtime_error naming the file and the problem.
+[[nodiscard]] NetworkWeights read_network_weights(const std::string& path);
+
 }  // namespace clothcd::learning
