@@ -1,0 +1,130 @@
+"""clothcd: cloth collision detection (Jin et al.'s method, with no missed collision).
+
+Positions are (N, 3) float64 arrays and faces (F, 3) int32 arrays in C order; other dtypes or orders are converted.
+Errors arrive with the library's message: invalid arguments as ValueError, unreadable or invalid files as OSError.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import NamedTuple
+
+import numpy as np
+
+from ._clothcd import (
+    __version__,
+    load_mesh,
+    load_mesh_frames,
+    make_grid,
+    make_paper_cloth,
+    make_uv_sphere,
+    obb,
+    render_png,
+    save_mesh,
+    simplify,
+    simulate,
+    simulate_scene,
+)
+from . import _clothcd
+
+__all__ = [
+    "__version__", "Collisions", "CollisionDetector", "ccd", "default_model_dir", "load_mesh", "load_mesh_frames", "make_grid",
+    "make_paper_cloth", "make_uv_sphere", "obb", "render_png", "save_mesh", "simplify", "simulate", "simulate_scene",
+]
+
+VERTEX_FACE = 0
+"""Collisions.kind of a vertex-face pair: vertices[0] is the vertex, vertices[1:4] the triangle."""
+EDGE_EDGE = 1
+"""Collisions.kind of an edge-edge pair: vertices[0:2] is edge a, vertices[2:4] edge b."""
+
+
+def default_model_dir() -> str:
+    """The pair network shipped with the package (the repository's models/default)."""
+    return os.path.join(os.path.dirname(__file__), "models", "default")
+
+
+class Collisions(NamedTuple):
+    """Every collision of one step, one row per colliding primitive pair."""
+
+    kind: np.ndarray
+    """(n,) uint8: VERTEX_FACE (0) or EDGE_EDGE (1)."""
+    bodies: np.ndarray
+    """(n, 4) int32: body of each vertex (0 = cloth, k = the k-th obstacle added)."""
+    vertices: np.ndarray
+    """(n, 4) int32: vertex index of each vertex in its body, ordered as `kind` says."""
+    toi: np.ndarray
+    """(n,) float64: earliest time of impact as a fraction of the step (a lower bound when conservative)."""
+    parameters: np.ndarray
+    """(n, 2) float64: vertex-face: barycentric w1, w2 on the triangle; edge-edge: s on edge a, u on edge b."""
+    normal: np.ndarray
+    """(n, 3) float64: unit contact normal at toi, from the second primitive to the first."""
+    conservative: np.ndarray
+    """(n,) bool: reported because the CCD could not decide the pair."""
+
+    @property
+    def vertex_face(self) -> np.ndarray:
+        """(m, 4) vertices of the vertex-face pairs: vertex, then the triangle's three vertices."""
+        return self.vertices[self.kind == VERTEX_FACE]
+
+    @property
+    def edge_edge(self) -> np.ndarray:
+        """(m, 4) vertices of the edge-edge pairs: edge a's two vertices, then edge b's."""
+        return self.vertices[self.kind == EDGE_EDGE]
+
+
+class CollisionDetector:
+    """Continuous collision detection between a cloth and obstacles, step after step.
+
+    Settings (keywords): hierarchy ("sphere-root-aabb", "aabb", "aabb-obb"), culling ("filters", "none",
+    "nonpenetration", "projection", "network"), thickness, self_collision, model_path (network culling; default: the
+    shipped model), max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly; see the C++
+    clothcd::DetectorSettings. One detector must not be used from two threads at once; separate detectors may.
+    """
+
+    def __init__(self, faces, vertex_count: int, *, hierarchy: str = "sphere-root-aabb", culling: str = "filters",
+                 thickness: float = 0.0, self_collision: bool = True, model_path: str = "",
+                 max_leaf_faces: int = 32, parallel: bool = True, reuse_unchanged: bool = True,
+                 projection_normals: bool = True, decide_exactly: bool = False) -> None:
+        if culling == "network" and not model_path:
+            model_path = default_model_dir()
+        self._detector = _clothcd._CollisionDetector(
+            np.ascontiguousarray(faces, dtype=np.int32), vertex_count, hierarchy, culling, thickness, self_collision,
+            model_path, max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly)
+
+    def add_obstacle(self, vertices, faces) -> int:
+        """Adds a static obstacle; returns its body id (1, 2, ...)."""
+        return self._detector.add_obstacle(np.ascontiguousarray(vertices, dtype=np.float64),
+                                           np.ascontiguousarray(faces, dtype=np.int32))
+
+    def set_obstacle_transforms(self, body: int, start, end) -> None:
+        """Moves obstacle `body` rigidly over the next step: its mesh as added, transformed by the (4, 4) `start` and
+        `end` rigid transforms."""
+        self._detector.set_obstacle_transforms(body, np.ascontiguousarray(start, dtype=np.float64),
+                                               np.ascontiguousarray(end, dtype=np.float64))
+
+    def set_obstacle_positions(self, body: int, start, end) -> None:
+        """Sets the (N, 3) positions of obstacle `body` at the start and end of the next step."""
+        self._detector.set_obstacle_positions(body, np.ascontiguousarray(start, dtype=np.float64),
+                                              np.ascontiguousarray(end, dtype=np.float64))
+
+    @property
+    def obstacle_count(self) -> int:
+        """Number of obstacles added."""
+        return self._detector.obstacle_count()
+
+    def detect(self, x0, x1) -> Collisions:
+        """Every collision of the step from cloth positions `x0` to `x1` ((N, 3) float64 each). Runs without the GIL."""
+        kind, bodies, vertices, toi, parameters, normal, conservative = self._detector.detect(x0, x1)
+        return Collisions(kind, bodies, vertices, toi, parameters, normal, conservative.view(bool))
+
+    def stats(self) -> dict:
+        """Counts and times of the last detect() call."""
+        return self._detector.stats()
+
+
+def ccd(queries, kind: str = "vf", *, filter: str = "combined", thickness: float = 0.0, exact: bool = False):
+    """Continuous collision detection on (N, 8, 3) queries (the four points at t=0, then at t=1; vertex-face: the
+    vertex then the triangle, edge-edge: edge a then edge b). Returns (hit (N,) bool, toi (N,), culled (N,) bool):
+    `culled` pairs were removed by `filter` ("none", "nonpenetration", "projection", "combined")."""
+    hit, toi, culled = _clothcd._ccd(np.ascontiguousarray(queries, dtype=np.float64), kind, filter, thickness, exact)
+    return hit.astype(bool), toi, culled.astype(bool)
