@@ -50,6 +50,7 @@ enum class BvhUpdate {
 
 /// Hierarchy over one body's triangles. Owned vertices and edges (BodyTopology owners) are stored in the order of their
 /// owning triangle, so every node, leaf or not, holds a contiguous range of them.
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class Bvh {
  public:
   /// An empty hierarchy with the given settings; call build() or update() before use.

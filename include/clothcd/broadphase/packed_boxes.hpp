@@ -67,6 +67,7 @@ struct PackedBox {
 
 /// Boxes stored as six rows of floats (lo x, y, z, hi x, y, z), each padded by kPackedPadding never-overlapping
 /// entries.
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class PackedBoxes {
  public:
   /// Replaces the contents with outward-rounded copies of `boxes`.
@@ -126,6 +127,7 @@ class PackedBoxes {
 
 /// The vertex indices of edges (2 rows) or faces (3 rows) as rows of ints, each padded by kPackedPadding entries of
 /// -1, so that four or eight consecutive primitives can be compared with a vertex at once.
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class PackedVertexIds {
  public:
   /// Replaces the contents: `ids` holds `per_primitive` (2 or 3) indices (>= 0) per primitive, one after the other.

@@ -54,6 +54,7 @@ struct QueryRecord {
 
 /// Reads one query file a query at a time, so that memory does not grow with the file (the public benchmark's
 /// simulation sets hold files of millions of queries). Checks as read_query_file.
+/// Threads: one reader belongs to one thread at a time (reading advances it); separate readers may run in parallel.
 class QueryFileReader {
  public:
   /// Opens `path`. kind: the pair kind, or nullopt to take it from the path. Throws QueryFileError when the file

@@ -75,6 +75,8 @@ struct DetectionStats {
 };
 
 /// Continuous collision detection between a cloth and obstacles, step after step.
+/// Threads: one detector belongs to one thread at a time (detect() updates its hierarchies and buffers, and runs TBB
+/// threads of its own when DetectorSettings::parallel is set); separate detectors may run in parallel.
 class CollisionDetector {
  public:
   /// Takes the cloth's triangles (indices into its `cloth_vertex_count` vertices) and the settings.

@@ -34,6 +34,8 @@ struct NetworkCullingStats {
 };
 
 /// A loaded pair network plus reusable scratch buffers: culls batches of CCD queries.
+/// Threads: one culler belongs to one thread at a time (cull() reuses its buffers; it runs TBB threads of its own when
+/// asked); separate cullers may run in parallel. The classifier() it holds may be read concurrently.
 class NetworkCuller {
  public:
   /// Loads `model` (a model directory or its network.xml; empty: default_network_model_dir()). Throws

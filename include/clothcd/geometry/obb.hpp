@@ -64,6 +64,8 @@ void grow_obb(Obb& box, const Vertices& points);
 /// bring their covariance moments precomputed at rest (turned by the pose), and each extent is an exact support query
 /// over the hull vertices at rest along the axis turned back by the pose (SupportPoints: most hull vertices are skipped
 /// by sphere bounds, none wrongly).
+/// Threads: update() reuses the object's buffers, so one object belongs to one thread at a time; separate objects
+/// may run in parallel.
 class SimplifiedObb {
  public:
   /// Simplifies `original` to `settings.simplify_ratio` of its faces (QEM) and records its convex-hull vertices.

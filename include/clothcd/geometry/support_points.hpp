@@ -13,6 +13,7 @@
 namespace clothcd::geometry {
 
 /// A point set (e.g. the convex-hull vertices of a rigid obstacle at rest) prepared for repeated support queries.
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class SupportPoints {
  public:
   /// An empty set (every query returns -infinity).

@@ -35,6 +35,7 @@ struct OperatingPoint {
 inline constexpr std::size_t kMaxLayerNeurons = 64;
 
 /// A loaded pair network with its operating point and its map from feature columns to network inputs.
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class PairClassifier {
  public:
   /// Builds from weights; `feature_names` names the columns of the batches that will be passed (usually

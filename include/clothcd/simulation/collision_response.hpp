@@ -61,6 +61,7 @@ void apply_impulses(const std::vector<Collision>& collisions, const StepContext&
                     const ResponseSettings& settings, Vertices& cloth_end);
 
 /// The fail-safe's bookkeeping: per cloth vertex, free (-1), static (0) or carried by obstacle body k (k >= 1).
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class FailSafe {
  public:
   /// Starts with every vertex of a `vertex_count`-vertex cloth free (a negative count is an empty cloth).

@@ -14,6 +14,7 @@
 namespace clothcd::simulation {
 
 /// The pairs reported in recent steps, in the canonical order of sort_collisions, one record per pair.
+/// Threads: const member functions may run on several threads at once; any other call needs the object to itself.
 class ContactMemory {
  public:
   /// Adds collisions (sorted by sort_collisions, at most one per pair, as CollisionDetector reports them); a pair

@@ -26,6 +26,7 @@ struct IntegratorResult {
 /// Advances velocities by one backward-Euler step (Baraff and Witkin 1998):
 /// (M - h dF/dv - h^2 dF/dx) dv = h (F(x0, v0) + h dF/dx v0), v1 = v0 + dv; pinned vertices keep v = 0.
 /// Holds scratch buffers so that repeated steps do not allocate.
+/// Threads: a step reuses the object's buffers, so one integrator belongs to one thread at a time.
 class ImplicitIntegrator {
  public:
   /// Creates an integrator with the given solve settings. Throws std::invalid_argument unless max_cg_iterations >= 1

@@ -46,6 +46,8 @@ struct StepStats {
 };
 
 /// A running simulation of one scene.
+/// Threads: step() advances the object's state, so one simulator belongs to one thread at a time; separate simulators
+/// may run in parallel.
 class Simulator {
  public:
   /// Builds the cloth model and the detector for `scene`. Throws std::invalid_argument on a bad setting (dt <= 0,
