@@ -22,8 +22,6 @@ from ._clothcd import (
     render_png,
     save_mesh,
     simplify,
-    simulate,
-    simulate_scene,
 )
 from . import _clothcd
 
@@ -128,3 +126,25 @@ def ccd(queries, kind: str = "vf", *, filter: str = "combined", thickness: float
     `culled` pairs were removed by `filter` ("none", "nonpenetration", "projection", "combined")."""
     hit, toi, culled = _clothcd._ccd(np.ascontiguousarray(queries, dtype=np.float64), kind, filter, thickness, exact)
     return hit.astype(bool), toi, culled.astype(bool)
+
+
+def simulate(cloth, obstacles, *, steps: int = 200, frames_every: int = 10, dt: float = 0.005,
+             thickness: float = 0.004, culling: str = "filters", model_path: str = ""):
+    """Drops `cloth` = (vertices, faces) under gravity (-y) onto static `obstacles` [(vertices, faces), ...]; returns
+    the cloth positions (N, 3) of step 0 and of every `frames_every`-th step. culling: "filters", "network" (with
+    `model_path`, default the shipped model) or "none". Runs without the GIL."""
+    if culling == "network" and not model_path:
+        model_path = default_model_dir()
+    return _clothcd.simulate(cloth, obstacles, steps=steps, frames_every=frames_every, dt=dt, thickness=thickness,
+                             culling=culling, model_path=model_path)
+
+
+def simulate_scene(name: str, cloth: str = "A", *, steps: int = -1, frames_every: int = 10, dt: float = 0.005,
+                   thickness: float = 0.004, culling: str = "filters", model_path: str = ""):
+    """One of the paper's scenes (box, sphere, human, ...; models from the Debian packages of
+    scripts/install-deps.sh): returns (cloth faces, frames, obstacles at rest [(vertices, faces), ...]); steps < 0
+    takes the scene's default."""
+    if culling == "network" and not model_path:
+        model_path = default_model_dir()
+    return _clothcd.simulate_scene(name, cloth, steps=steps, frames_every=frames_every, dt=dt, thickness=thickness,
+                                   culling=culling, model_path=model_path)

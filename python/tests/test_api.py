@@ -92,6 +92,9 @@ def test_simulation_drops_a_cloth_on_a_sphere():
     assert frames[-1][:, 1].mean() < frames[0][:, 1].mean()  # it fell
     # Nothing passed into the sphere: every cloth vertex stays outside it (up to the thickness).
     assert np.min(np.linalg.norm(frames[-1], axis=1)) > 0.5 - 0.01
+    # The network culler (the shipped model) gives the same simulation: it culls only pairs that cannot collide.
+    with_network = clothcd.simulate((cloth_vertices, cloth[1]), [sphere], steps=40, frames_every=20, culling="network")
+    assert all(np.array_equal(a, b) for a, b in zip(frames, with_network))
 
 
 def test_threads_get_the_same_answers():
