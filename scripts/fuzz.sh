@@ -13,8 +13,6 @@ build=$root/build-fuzz
 cd "$root"
 
 scripts/install-deps.sh --fuzz
-# The model loader target links OpenNN: build it when no set-up has yet (not again when one has).
-[[ -f third_party/opennn/install/lib/libopennn.so ]] || scripts/build-opennn.sh
 cmake -S fuzz -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build "$build" --parallel "$(nproc)"
 

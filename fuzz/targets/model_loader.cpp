@@ -1,12 +1,11 @@
 // libFuzzer target: the pair network's model files, network.xml then card.json separated by kFileSeparator, read as
-// PairClassifier::load reads them (the card, the weights through tinyxml2 and OpenNN, their validation and agreement).
+// PairClassifier::load reads them (the card, and the weights through the library's own reader and their validation).
 // Every fault is a std::runtime_error (or std::invalid_argument from the validation).
 #include <stdexcept>
 
 #include "clothcd/learning/model_card.hpp"
 #include "clothcd/learning/network_weights.hpp"
 #include "fuzz_support.hpp"
-#include "learning/opennn_backend.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto [network, card] = clothcd::fuzz::split_files(data, size);
@@ -18,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const std::runtime_error&) {
   }
   try {
-    const clothcd::learning::NetworkWeights weights = clothcd::learning::backend::read_network_weights(network_path);
+    const clothcd::learning::NetworkWeights weights = clothcd::learning::read_network_weights(network_path);
     clothcd::learning::validate_network_weights(weights, network_path);
   } catch (const std::runtime_error&) {
   } catch (const std::invalid_argument&) {
