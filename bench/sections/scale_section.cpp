@@ -124,9 +124,9 @@ std::optional<fs::path> peer_python(const BenchContext& context, const fs::path&
   return std::nullopt;
 }
 
-PeerRun run_peer(const fs::path& python, const fs::path& script, const fs::path& scene, int threads, int repeats) {
+PeerRun run_peer(const fs::path& python, const fs::path& script, const fs::path& scene, int threads) {
   const ChildRun run = run_child({python.string(), script.string(), scene.string(), "--threads",
-                                  std::to_string(threads), "--repeats", std::to_string(repeats)}, threads);
+                                  std::to_string(threads), "--repeats", "1"}, threads);
   std::map<std::string, double> values;
   std::istringstream words(run.output);
   for (std::string word; words >> word;) {
@@ -138,17 +138,49 @@ PeerRun run_peer(const fs::path& python, const fs::path& script, const fs::path&
   return {static_cast<long>(values["candidates"]), values["best_ms"]};
 }
 
-// `repeats` detect runs on `cpus` CPUs: the one with the best whole-detection time; the largest peak memory of them.
-DetectRun best_detect(const fs::path& clothcd, const Scene& scene, const fs::path& scratch, int cpus, int repeats,
-                      double& peak_rss, std::vector<std::string>& digests) {
-  std::optional<DetectRun> best;
-  for (int r = 0; r < repeats; ++r) {
-    DetectRun run = run_detect(clothcd, scene.t0, scene.t1, scratch / "collisions.json", cpus);
-    peak_rss = std::max(peak_rss, run.peak_rss_mb);
-    digests.push_back(run.digest);
-    if (!best || run.whole_ms() < best->whole_ms()) best = std::move(run);
+// Keeps the faster of `best` and `run`, and the larger peak memory; notes the run's digest.
+void keep_best(std::optional<DetectRun>& best, DetectRun run, double& peak_rss, std::vector<std::string>& digests) {
+  peak_rss = std::max(peak_rss, run.peak_rss_mb);
+  digests.push_back(run.digest);
+  if (!best || run.whole_ms() < best->whole_ms()) best = std::move(run);
+}
+
+// Keeps the faster of `best` and `run`.
+void keep_best(std::optional<PeerRun>& best, const PeerRun& run) {
+  if (!best || run.ms < best->ms) best = run;
+}
+
+// The programs a step is measured with.
+struct Programs {
+  fs::path clothcd;                ///< clothcd, for `clothcd detect`.
+  std::optional<fs::path> python;  ///< The peer's Python, when it imports ipctk.
+  fs::path peer_script;            ///< bench/peers/ipctk_candidates.py.
+};
+
+// `repeats` rounds, each running clothcd detect on one CPU and on two and the peer on one and on two in turn (so a
+// change of the shared machine's load affects all four alike); the best time of each over the rounds.
+SceneResult measure_scene(const BenchContext& context, const Scene& scene, const fs::path& peer_file,
+                          const Programs& programs, int repeats, bool two_cpus) {
+  SceneResult result;
+  result.scene = scene;
+  std::optional<DetectRun> one, two;
+  std::vector<std::string> digests;
+  const fs::path collisions = peer_file.parent_path() / "collisions.json";
+  for (int round = 1; round <= repeats; ++round) {
+    context.progress(scene.name + " (" + std::to_string(scene.faces) + " faces): round " + std::to_string(round) +
+                     " of " + std::to_string(repeats) + (programs.python ? ", clothcd detect and ipctk" : ""));
+    keep_best(one, run_detect(programs.clothcd, scene.t0, scene.t1, collisions, 1), result.peak_rss_one, digests);
+    if (two_cpus)
+      keep_best(two, run_detect(programs.clothcd, scene.t0, scene.t1, collisions, 2), result.peak_rss_two, digests);
+    if (!programs.python) continue;
+    keep_best(result.peer_one, run_peer(*programs.python, programs.peer_script, peer_file, 1));
+    if (two_cpus) keep_best(result.peer_two, run_peer(*programs.python, programs.peer_script, peer_file, 2));
   }
-  return *best;
+  result.one = *one;
+  if (two) result.two = *two;
+  result.same_collisions = std::all_of(digests.begin(), digests.end(), [&](auto& d) { return d == digests[0]; });
+  if (scene.truth) result.truth = check_truth(*scene.truth, result.one.collisions);
+  return result;
 }
 
 std::string verdict(bool met) { return met ? "met" : "**missed**"; }
@@ -188,31 +220,16 @@ SectionReport run_scale(const BenchContext& context) {
   }
 
   std::string peer_status;
-  const std::optional<fs::path> python = peer_python(context, script, peer_status);
+  const Programs programs{clothcd, peer_python(context, script, peer_status), script};
+  const std::optional<fs::path>& python = programs.python;
   std::vector<SceneResult> results;
   for (Scene& scene : scenes) {
     const MeshFrames frames = load_mesh_frames(scene.t0, scene.t1);
     scene.vertices = static_cast<long>(frames.start.vertex_count());
     scene.faces = static_cast<long>(frames.start.face_count());
-    SceneResult result;
-    result.scene = scene;
-    std::vector<std::string> digests;
-    context.progress(scene.name + " (" + std::to_string(scene.faces) + " faces): clothcd detect on one CPU");
-    result.one = best_detect(clothcd, scene, scratch.path(), 1, repeats, result.peak_rss_one, digests);
-    if (scene.truth) result.truth = check_truth(*scene.truth, result.one.collisions);
-    if (two_cpus) {
-      context.progress(scene.name + ": clothcd detect on two CPUs");
-      result.two = best_detect(clothcd, scene, scratch.path(), 2, repeats, result.peak_rss_two, digests);
-    }
-    result.same_collisions = std::all_of(digests.begin(), digests.end(), [&](auto& d) { return d == digests[0]; });
-    if (python) {
-      context.progress(scene.name + ": ipctk LBVH candidates");
-      const fs::path peer_file = scratch.path() / "peer-scene.bin";
-      write_peer_scene(frames, peer_file);
-      result.peer_one = run_peer(*python, script, peer_file, 1, repeats);
-      if (two_cpus) result.peer_two = run_peer(*python, script, peer_file, 2, repeats);
-    }
-    results.push_back(std::move(result));
+    const fs::path peer_file = scratch.path() / "peer-scene.bin";
+    if (python) write_peer_scene(frames, peer_file);
+    results.push_back(measure_scene(context, scene, peer_file, programs, repeats, two_cpus));
   }
 
   CsvFile csv(context.out_dir / "scale.csv",
@@ -304,13 +321,13 @@ SectionReport run_scale(const BenchContext& context) {
   std::string md = "## Scaling to large steps: generated and real steps against the IPC Toolkit\n\n";
   md += "Each step is given to `clothcd detect T0 T1 --out FILE` (thickness 0, the default hierarchy and combined "
         "filters) as one multi-body mesh, in a child process pinned to one CPU and then to two (TBB sizes its pool "
-        "to them); best of " + std::to_string(repeats) + " runs by whole-detection time (build/refit + candidate "
+        "to them), then to the peer on one CPU and on two, in turn, " + std::to_string(repeats) + " rounds; best "
+        "round of each by whole-detection time (build/refit + candidate "
         "search + culling + exact test, the detector's own stage times; loading excluded). Peak memory: the child's "
         "peak resident set (wait4), loading and writing the JSON included. Digest: FNV-1a over the sorted collisions "
         "(pairs, conservative flags, tois), to compare two detector versions bit for bit. Peer: " +
         (python ? peer_status + ", `Candidates.build(mesh, V0, V1, 0.0, LBVH())` alone on the same positions, "
-                                "`ipctk.set_num_threads` and the same CPU pinning, best of " +
-                      std::to_string(repeats)
+                                "`ipctk.set_num_threads` and the same CPU pinning, best round"
                 : peer_status) +
         ". Generated steps: N bodies (UV spheres, cloth sheets, fish of about 1 unit) on a lattice of 1.5-unit "
         "cells, each thrown about a cell in a random direction with a turn (bench/suite/thrown_bodies.hpp; the same "
