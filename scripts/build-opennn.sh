@@ -9,7 +9,8 @@ sha256=b7cf31e79f814823fdd5f49957074ed29debd103647a2331d1f664827acec470
 work="$root/third_party/opennn"
 prefix="$work/install"
 patch_file="$root/scripts/opennn/clothcd-opennn.patch"
-stamp_value="$version $sha256 $(sha256sum "$patch_file" "$root/scripts/opennn/CMakeLists.txt" | sha256sum | cut -c1-64)"
+# The contents only, not the paths: checkouts in other folders sharing third_party/ must agree on the stamp.
+stamp_value="$version $sha256 $(cat "$patch_file" "$root/scripts/opennn/CMakeLists.txt" | sha256sum | cut -c1-64)"
 
 if [[ -f "$prefix/.stamp" && "$(cat "$prefix/.stamp")" == "$stamp_value" ]]; then
   echo "OpenNN $version already built in $prefix"
