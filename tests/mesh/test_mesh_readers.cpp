@@ -322,6 +322,20 @@ TEST_CASE("malformed files: one clear error naming the file and the place", "[me
                  Catch::Contains("line 6") && Catch::Contains("non-finite"));
     }
   }
+  SECTION("NaN and infinity in binary bodies, named by byte offset") {
+    std::string ply = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                      "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::size_t body = ply.size();
+    ply += std::string(32, '\0') + "\x7f\xf8" + std::string(6, '\0') + std::string(32, '\0');  // y of vertex 1: NaN
+    ply += std::string("\x03", 1) + std::string(3, '\0') + std::string("\0\0\0\x01\0\0\0\x02", 8);
+    CHECK_THAT(error("nan.ply", ply), Catch::Contains("byte offset " + std::to_string(body + 32)) &&
+                                          Catch::Contains("non-finite"));
+    std::string stl(80, ' ');
+    stl += std::string("\x01\0\0\0", 4) + std::string(12 + 20, '\0') + std::string("\0\0\x80\x7f", 4) +
+           std::string(12 + 2, '\0');
+    CHECK_THAT(error("inf.stl", stl), Catch::Contains("byte offset 116") && Catch::Contains("non-finite"));
+    CHECK_THAT(error("long.stl", stl + "xy"), Catch::Contains("byte offset 80") && Catch::Contains("trailing bytes"));
+  }
   SECTION("counts far beyond the file's size are refused before anything is allocated") {
     CHECK_THAT(error("h.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2147483648\nproperty double x\n"
                               "property double y\nproperty double z\nend_header\n" + std::string(24, '\0')),
