@@ -191,8 +191,10 @@ std::string ms(double value) { return number(value, 4) + " ms"; }
 
 SectionReport run_scale(const BenchContext& context) {
   const ScratchFolder scratch;
-  const fs::path clothcd = fs::read_symlink("/proc/self/exe").parent_path() / "clothcd";
-  if (access(clothcd.c_str(), X_OK) != 0) throw std::runtime_error("no clothcd program beside clothcd-bench");
+  const fs::path clothcd = context.clothcd_program.empty()
+                               ? fs::read_symlink("/proc/self/exe").parent_path() / "clothcd"
+                               : fs::absolute(context.clothcd_program);
+  if (access(clothcd.c_str(), X_OK) != 0) throw std::runtime_error("cannot run " + clothcd.string());
   const fs::path script = kSourceDir / "bench" / "peers" / "ipctk_candidates.py";
   const int repeats = context.quick ? 1 : 3;
   const bool two_cpus = have_cpus(2);
@@ -338,6 +340,7 @@ SectionReport run_scale(const BenchContext& context) {
   if (context.part_of_all && !context.quick)
     md += " Part of `clothcd bench all`: the largest generated step (over 30M candidates) runs only in "
           "`clothcd bench scale`.";
+  if (!context.clothcd_program.empty()) md += " Detector measured: " + clothcd.string() + " (`--clothcd`).";
   if (context.quick) md += " Quick run: small steps only, one run each, no peer set-up.";
   md += "\n\n";
   md += markdown_table({"step", "faces", "candidates", "ms build+refit / search / culling / exact (1 thread)",

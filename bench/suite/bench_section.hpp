@@ -20,6 +20,9 @@ struct BenchContext {
   /// The shared real simulation steps (scalable-ccd-sample: one folder per scene with t0.ply, t1.ply, truth.json),
   /// when present.
   std::optional<std::filesystem::path> scalable_ccd;
+  /// The clothcd program whose `detect` the scale section runs (empty: the one beside clothcd-bench); another build's
+  /// program measures another version of the detector on the same steps and peer.
+  std::filesystem::path clothcd_program;
   bool quick = false;                                ///< CI-sized run: fewer models, steps and repetitions.
   bool part_of_all = false;  ///< Run by `clothcd bench all`: a section may leave out cases of minutes and gigabytes.
   std::function<void(const std::string&)> progress;  ///< Reports one step ("building OBBs on the cat"); never null.

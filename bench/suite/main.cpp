@@ -1,7 +1,7 @@
 // clothcd-bench: runs the benchmark sections (the paper's tables and figures, with peer libraries in the same run) and
 // writes their CSV and PNG files plus one Markdown report into the output folder.
 // Usage: clothcd-bench all|NAME --out DIR [--quick] [--models DIR] [--network DIR] [--ccd-queries DIR]
-//        [--scalable-ccd DIR]
+//        [--scalable-ccd DIR] [--clothcd PROGRAM]
 #include <CLI/CLI.hpp>
 
 #include <cctype>
@@ -100,6 +100,8 @@ int main(int argc, char** argv) {
                  "../shared/data/ccd-sample-queries beside the source tree, when present)");
   app.add_option("--scalable-ccd", scalable_ccd, "The shared real simulation steps for the scale section (default: "
                  "../shared/data/scalable-ccd-sample beside the source tree, when present)");
+  app.add_option("--clothcd", context.clothcd_program, "The clothcd program whose `detect` the scale section measures "
+                 "(default: the one beside clothcd-bench)")->check(CLI::ExistingFile);
   std::string footer = "Sections:\n";
   for (const Section& s : sections) footer += "  " + s.name + ": " + s.summary + "\n";
   app.footer(footer);
