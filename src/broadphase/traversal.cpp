@@ -8,9 +8,13 @@
 // schedule.
 #include "clothcd/broadphase/traversal.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -149,12 +153,78 @@ std::vector<std::uint8_t> dirty_nodes(const Bvh& bvh, const std::vector<std::uin
   return dirty;
 }
 
+// Where a search puts its candidates: collected into one set (the tasks' own sets joined in task order, so that the
+// order does not depend on the schedule), or handed to a sink in chunks as the tasks find them.
+struct Output {
+  CandidateSet* collected = nullptr;
+  CandidateSink* sink = nullptr;
+  std::size_t chunk = 0;  // streaming: a task's buffer goes to the sink once it holds this many
+};
+
+// Streaming: hands `buffer` to the sink and empties it, once it holds a chunk (`full_only`) or whenever it holds any.
+void pass_on(CandidateSet& buffer, const Output& output, bool full_only) {
+  if (output.sink == nullptr || buffer.size() == 0 || (full_only && buffer.size() < output.chunk)) return;
+  output.sink->consume(buffer);
+  buffer.clear();
+}
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// A node pair holding at least this many faces (both nodes together) is searched as a task of its own in a parallel
+// streamed search: enough tasks for every thread to take from, few enough that spawning costs nothing.
+constexpr int kSpawnFaces = 2048;
+
+// The streamed search: depth-first from `root`; with `parallel`, the node pairs of large subtrees (kSpawnFaces) become
+// tasks of a TBB task group, which idle threads take, so one body against itself keeps every core busy.
+template <class Overlap, class LeafWork>
+void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8_t* dirty, const Task& root,
+            const LeafWork& leaf_work, const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
+  tbb::enumerable_thread_specific<TraversalStats> thread_stats;
+  tbb::task_group group;
+  const bool wide = settings.wide_lanes && avx2_supported();
+  auto faces = [&](const Task& t) { return face_count(ta, t.a) + (t.self ? 0 : face_count(tb, t.b)); };
+  std::function<void(const Task&)> run = [&](const Task& first) {
+    const auto started = Clock::now();
+    TraversalStats& task_stats = thread_stats.local();
+    CandidateSet buffer;
+    detail::LeafScratch scratch;
+    scratch.wide_lanes = wide;
+    std::vector<Task> stack{first};
+    auto push = [&](const Task& t) {
+      if (settings.parallel && faces(t) >= kSpawnFaces) {
+        group.run([&run, t] { run(t); });
+      } else {
+        stack.push_back(t);
+      }
+    };
+    while (!stack.empty()) {
+      const Task task = stack.back();
+      stack.pop_back();
+      step(ta, tb, overlap, dirty, task, task_stats, push, [&](const Task& t) {
+        leaf_work(t, buffer, task_stats, scratch);
+        pass_on(buffer, output, true);
+      });
+    }
+    pass_on(buffer, output, false);
+    task_stats.task_ms += milliseconds_since(started);
+  };
+  group.run([&] { run(root); });
+  group.wait();
+  for (const TraversalStats& s : thread_stats) stats.add(s);
+}
+
 template <class Overlap, class LeafWork>
 void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& root, const LeafWork& leaf_work,
-            const TraversalSettings& settings, CandidateSet& out, TraversalStats& stats) {
+            const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
   std::vector<std::uint8_t> dirty_storage;
   if (settings.moved_vertices != nullptr) dirty_storage = dirty_nodes(ta, *settings.moved_vertices);
   const std::uint8_t* dirty = settings.moved_vertices != nullptr ? dirty_storage.data() : nullptr;
+  if (output.sink != nullptr) return stream(ta, tb, overlap, dirty, root, leaf_work, settings, output, stats);
+  CandidateSet& out = *output.collected;
   // Breadth-first expansion into independent tasks; leaf tasks are kept as tasks.
   std::vector<Task> tasks{root};
   while (settings.parallel && tasks.size() < kTargetTasks) {
@@ -175,6 +245,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
   }
 
   auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
+    const auto started = Clock::now();
     std::vector<Task> stack{first};
     detail::LeafScratch scratch;
     scratch.wide_lanes = settings.wide_lanes && avx2_supported();
@@ -184,6 +255,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
       step(ta, tb, overlap, dirty, task, task_stats, [&](const Task& t) { stack.push_back(t); },
            [&](const Task& t) { leaf_work(t, task_out, task_stats, scratch); });
     }
+    task_stats.task_ms += milliseconds_since(started);
   };
 
   if (!settings.parallel || tasks.size() == 1) {
@@ -240,9 +312,10 @@ bool few_moved(const std::vector<std::uint8_t>& moved) {
 // that a moved primitive of the leaf may touch; each moved primitive is then tested against those leaves only.
 class MovedQueries {
  public:
+  // The candidates go to `out`, and from there, when streaming, to the sink (see pass_on).
   MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved,
-               const TraversalSettings& settings, TraversalStats& stats)
-      : moved_tree_(moved_tree), searched_(searched), moved_(moved), stats_(stats) {
+               const TraversalSettings& settings, CandidateSet& out, const Output& output, TraversalStats& stats)
+      : moved_tree_(moved_tree), searched_(searched), moved_(moved), out_(out), output_(output), stats_(stats) {
     scratch_.wide_lanes = settings.wide_lanes && avx2_supported();
   }
 
@@ -266,6 +339,7 @@ class MovedQueries {
         if (face_moved(p)) reach.expand(t.ordered_face_boxes()[p]);
       }
       if (reach.min[0] > reach.max[0]) continue;  // no moved face
+      pass_on(out_, output_, true);
       find_leaves(reach);
       for (int i = t.vertex_offset()[leaf.face_begin]; i < t.vertex_offset()[leaf.face_end]; ++i) {
         if (moved(t.owned_vertices()[i])) {
@@ -281,6 +355,7 @@ class MovedQueries {
         }
       }
     }
+    pass_on(out_, output_, false);
   }
 
  private:
@@ -322,6 +397,8 @@ class MovedQueries {
   const Bvh& moved_tree_;
   const Bvh& searched_;
   const std::vector<std::uint8_t>& moved_;
+  CandidateSet& out_;
+  const Output& output_;
   TraversalStats& stats_;
   detail::LeafScratch scratch_;
   std::vector<int> stack_;
@@ -332,12 +409,12 @@ class MovedQueries {
 // find_self_candidates restricted to `moved` by queries: each moved vertex against the faces, each moved face against
 // the unmoved vertices, each moved edge against the edges (a pair of two moved edges from the one of lower index).
 void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& moved, const TraversalSettings& settings,
-                      CandidateSet& out, TraversalStats& stats) {
+                      CandidateSet& out, const Output& output, TraversalStats& stats) {
   const Bvh& t = *body.bvh;
   const int id = body.body;
   const int* faces = t.ordered_faces().data();
   const int* edges = t.ordered_edges().data();
-  MovedQueries queries(t, t, moved, settings, stats);
+  MovedQueries queries(t, t, moved, settings, out, output, stats);
   queries.run(
       [&](int i, const std::vector<int>& face_hits) {
         const int v = t.owned_vertices()[i];
@@ -371,10 +448,11 @@ void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& mov
 // find_pair_candidates restricted to `moved` (of body a) by queries of body b's hierarchy: each moved vertex of a
 // against b's faces, each moved face of a against b's vertices, each moved edge of a against b's edges.
 void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved,
-                      const TraversalSettings& settings, CandidateSet& out, TraversalStats& stats) {
+                      const TraversalSettings& settings, CandidateSet& out, const Output& output,
+                      TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
-  MovedQueries queries(ta, tb, moved, settings, stats);
+  MovedQueries queries(ta, tb, moved, settings, out, output, stats);
   queries.run(
       [&](int i, const std::vector<int>& face_hits) {
         for (const int p : face_hits) {
@@ -401,9 +479,19 @@ FlatBox body_box(const BodyView& body) {
   return b;
 }
 
-void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats) {
+namespace {
+
+void check_chunk(const TraversalSettings& settings, const Output& output) {
+  if (output.sink != nullptr && settings.chunk_pairs == 0) {
+    throw std::invalid_argument("broad phase: chunk_pairs must be >= 1");
+  }
+}
+
+// find_self_candidates into `output`.
+void self_search(const BodyView& body, const TraversalSettings& settings, const Output& output,
+                 TraversalStats* stats) {
   check_view(body, true);
+  check_chunk(settings, output);
   TraversalStats local;
   const Bvh& t = *body.bvh;
   check_moved(body, settings);
@@ -418,17 +506,22 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
     throw std::invalid_argument("broad phase: self-collision search needs an AABB or sphere hierarchy");
   }
   if (moved != nullptr && few_moved(*settings.moved_vertices)) {
-    query_moved_self(body, *settings.moved_vertices, settings, out, local);
+    const auto started = Clock::now();
+    CandidateSet buffer;
+    query_moved_self(body, *settings.moved_vertices, settings, output.sink ? buffer : *output.collected, output, local);
+    local.task_ms += milliseconds_since(started);
   } else {
-    search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, out, local);
+    search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, output, local);
   }
   if (stats != nullptr) stats->add(local);
 }
 
-void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats) {
+// find_pair_candidates into `output`.
+void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& settings, const Output& output,
+                 TraversalStats* stats) {
   check_view(a, true);
   check_view(b, true);
+  check_chunk(settings, output);
   TraversalStats local;
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
@@ -446,7 +539,10 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
                                 "AABB-OBB)");
   }
   if (moved != nullptr && few_moved(*settings.moved_vertices)) {
-    query_moved_pair(a, b, *settings.moved_vertices, settings, out, local);
+    const auto started = Clock::now();
+    CandidateSet buffer;
+    query_moved_pair(a, b, *settings.moved_vertices, settings, output.sink ? buffer : *output.collected, output, local);
+    local.task_ms += milliseconds_since(started);
   } else if (spheres) {
     // Root-node double box: sphere first, the AABBs only when the spheres overlap, the descent only after both.
     local.volume_tests += 1;
@@ -455,15 +551,37 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
       local.volume_tests += 1;
       if (body_box(a).overlaps(body_box(b))) {
         local.root_aabb_overlap = true;
-        search(ta, tb, SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, out, local);
+        search(ta, tb, SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, output, local);
       }
     }
   } else if (boxes) {
-    search(ta, tb, BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, out, local);
+    search(ta, tb, BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
   } else {
-    search(ta, tb, BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, out, local);
+    search(ta, tb, BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
   }
   if (stats != nullptr) stats->add(local);
+}
+
+}  // namespace
+
+void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats) {
+  self_search(body, settings, Output{&out, nullptr, 0}, stats);
+}
+
+void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSink& sink,
+                          TraversalStats* stats) {
+  self_search(body, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
+}
+
+void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats) {
+  pair_search(a, b, settings, Output{&out, nullptr, 0}, stats);
+}
+
+void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
+                          TraversalStats* stats) {
+  pair_search(a, b, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
 }
 
 void brute_force_self_candidates(const BodyView& body, CandidateSet& out) {

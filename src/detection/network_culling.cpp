@@ -49,6 +49,12 @@ std::string default_network_model_dir() {
 NetworkCuller::NetworkCuller(const std::string& model)
     : classifier_(learning::PairClassifier::load(model.empty() ? default_network_model_dir() : model, features_)) {}
 
+void NetworkCuller::decide(const ccd::CcdQuery* queries, std::size_t count, learning::PairFeatureBatch& batch,
+                           learning::PairDecision* out) const {
+  learning::compute_pair_features(queries, count, features_, batch);
+  classifier_.decide(batch, out);
+}
+
 NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& queries, const ccd::CcdSettings& settings,
                                         bool parallel, std::vector<std::uint8_t>& keep,
                                         const ccd::ProjectionFilterOptions& projection) {
@@ -64,8 +70,7 @@ NetworkCullingStats NetworkCuller::cull(const std::vector<ccd::CcdQuery>& querie
   detail::for_each_index(chunks, parallel, 1, [&](std::size_t c) {
     const std::size_t begin = c * kChunk;
     const std::size_t n = std::min(kChunk, total - begin);
-    learning::compute_pair_features(queries.data() + begin, n, features_, batches_[c]);
-    classifier_.decide(batches_[c], decisions_.data() + begin);
+    decide(queries.data() + begin, n, batches_[c], decisions_.data() + begin);
   });
   stats.network_ms = milliseconds_since(t);
 

@@ -158,6 +158,57 @@ TEST_CASE("detector output does not depend on the hierarchy or threads", "[detec
   for (const auto& o : outputs) CHECK(o == outputs[0]);
 }
 
+TEST_CASE("detector output and counts do not depend on the block size", "[detection][block]") {
+  const CullingMode culling = GENERATE(CullingMode::None, CullingMode::Projection, CullingMode::Filters,
+                                       CullingMode::Network);
+  const double thickness = GENERATE(0.0, 0.01);
+  TriangleMesh cloth = make_grid(12, 12, 1.6, 1.6);
+  cloth.vertices.col(1).array() += 0.62;
+  const TriangleMesh obstacle = make_uv_sphere(0.6, 12, 8);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.03, 0.03);
+  Vertices end = cloth.vertices;
+  for (Eigen::Index v = 0; v < end.rows(); ++v) {
+    end(v, 1) -= 0.12 + 0.1 * std::cos(3.0 * cloth.vertices(v, 0));
+    for (int k = 0; k < 3; ++k) end(v, k) += jitter(rng);
+  }
+  std::vector<Collision> reference;
+  DetectionStats reference_stats;
+  for (const int block_pairs : {1024, 1, 7, 16, 100}) {
+    for (const bool parallel : {false, true}) {
+      DetectorSettings settings;
+      settings.culling = culling;
+      settings.thickness = thickness;
+      settings.block_pairs = block_pairs;
+      settings.parallel = parallel;
+      CollisionDetector detector(cloth.faces, static_cast<int>(cloth.vertex_count()), settings);
+      detector.add_obstacle(obstacle);
+      const std::vector<Collision> found = detector.detect(cloth.vertices, end);
+      const DetectionStats& stats = detector.stats();
+      if (reference.empty()) {
+        reference = found;
+        reference_stats = stats;
+        REQUIRE_FALSE(reference.empty());
+        continue;
+      }
+      REQUIRE(found.size() == reference.size());
+      for (std::size_t i = 0; i < found.size(); ++i) {
+        CHECK(key_of(found[i]) == key_of(reference[i]));
+        CHECK(found[i].toi == reference[i].toi);
+        CHECK(found[i].parameters == reference[i].parameters);
+        CHECK(found[i].normal == reference[i].normal);
+        CHECK(found[i].conservative == reference[i].conservative);
+      }
+      CHECK(stats.candidates_vertex_face == reference_stats.candidates_vertex_face);
+      CHECK(stats.candidates_edge_edge == reference_stats.candidates_edge_edge);
+      CHECK(stats.culled == reference_stats.culled);
+      CHECK(stats.network_dropped == reference_stats.network_dropped);
+      CHECK(stats.network_overruled == reference_stats.network_overruled);
+      CHECK(stats.network_kept == reference_stats.network_kept);
+    }
+  }
+}
+
 TEST_CASE("a moving obstacle hits a resting cloth, then rests", "[detection][moving]") {
   const TriangleMesh cloth = make_grid(6, 6);
   const TriangleMesh obstacle = make_box(Eigen::Vector3d(0.1, 0.1, 0.1));
@@ -192,6 +243,11 @@ TEST_CASE("detector rejects bad input", "[detection][errors]") {
   CHECK_THROWS_AS(CollisionDetector(cloth.faces, n, negative), std::invalid_argument);
   CHECK_THROWS_AS(CollisionDetector(cloth.faces, n - 1), std::invalid_argument);
   CHECK_THROWS_AS(CollisionDetector(Faces(0, 3), n), std::invalid_argument);
+  for (const int block_pairs : {0, -5, kMaxBlockPairs + 1}) {
+    DetectorSettings bad_block;
+    bad_block.block_pairs = block_pairs;
+    CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, bad_block), Catch::Contains("block_pairs"));
+  }
 
   CollisionDetector detector(cloth.faces, n);
   Vertices wrong = cloth.vertices.topRows(n - 1);

@@ -42,6 +42,19 @@ struct TraversalSettings {
   /// Test leaf primitives eight at a time where the CPU has AVX2 (clothcd::avx2_supported()), else four at a time. The
   /// result is the same either way.
   bool wide_lanes = true;
+  /// Searches that hand their candidates to a CandidateSink: a task passes its candidates on once it holds this many
+  /// (>= 1; a chunk may exceed it by the pairs of one leaf pair).
+  std::size_t chunk_pairs = 1024;
+};
+
+/// Receives the candidates of a streamed search chunk by chunk, so that the candidates of a step are never all held at
+/// once (see find_self_candidates and find_pair_candidates with a sink).
+class CandidateSink {
+ public:
+  virtual ~CandidateSink() = default;
+  /// Takes one chunk of candidates (the search clears it after the call). Called from the search's threads, possibly
+  /// from several at once, each call with its own chunk; chunks come in no particular order.
+  virtual void consume(const CandidateSet& chunk) = 0;
 };
 
 /// What one search did.
@@ -50,6 +63,8 @@ struct TraversalStats {
   long primitive_tests = 0;          ///< Primitive swept-box tests.
   bool root_sphere_overlap = false;  ///< Sphere hierarchies: the root spheres overlapped.
   bool root_aabb_overlap = false;    ///< Sphere hierarchies: the root AABBs were built and overlapped.
+  /// Time of the search summed over its tasks, the sink's work included (on one thread: the wall time).
+  double task_ms = 0.0;
 
   /// Adds the counts of `o` (flags are or-ed).
   void add(const TraversalStats& o) {
@@ -57,6 +72,7 @@ struct TraversalStats {
     primitive_tests += o.primitive_tests;
     root_sphere_overlap = root_sphere_overlap || o.root_sphere_overlap;
     root_aabb_overlap = root_aabb_overlap || o.root_aabb_overlap;
+    task_ms += o.task_ms;
   }
 };
 
@@ -74,6 +90,16 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
 /// vs faces of b, vertices of b vs faces of a, edges of a vs edges of b. Volume pairs: Aabb-Aabb, Sphere-Sphere (root
 /// double box logic; below the root, node spheres first and node boxes when the spheres overlap), Aabb-Obb. Throws std::invalid_argument for any other combination.
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
+                          TraversalStats* stats = nullptr);
+
+/// find_self_candidates handing the candidates to `sink` in chunks (TraversalSettings::chunk_pairs) as the search
+/// finds them instead of collecting them: the same pairs, in no particular order, and no storage proportional to them.
+/// With `parallel`, one body's search is split into node-pair tasks that every thread takes from.
+void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSink& sink,
+                          TraversalStats* stats = nullptr);
+
+/// find_pair_candidates handing the candidates to `sink` in chunks (see the find_self_candidates overload).
+void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats = nullptr);
 
 /// The reference: the same pairs as find_self_candidates by testing every vertex against every face and every edge

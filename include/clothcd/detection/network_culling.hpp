@@ -49,6 +49,11 @@ class NetworkCuller {
   NetworkCullingStats cull(const std::vector<ccd::CcdQuery>& queries, const ccd::CcdSettings& settings, bool parallel,
                            std::vector<std::uint8_t>& keep, const ccd::ProjectionFilterOptions& projection = {});
 
+  /// The model's decision for each of `count` queries into `out`, with the queries' features computed into `batch`
+  /// (the caller's scratch): several threads may call it at once, each with its own batch.
+  void decide(const ccd::CcdQuery* queries, std::size_t count, learning::PairFeatureBatch& batch,
+              learning::PairDecision* out) const;
+
   /// The model's decision per query of the last cull call (same order as the queries).
   [[nodiscard]] const std::vector<learning::PairDecision>& decisions() const { return decisions_; }
 

@@ -1,0 +1,127 @@
+// Pair blocks and their culling (see pair_block.hpp).
+#include "ccd/pair_block.hpp"
+
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace clothcd::ccd::detail {
+
+PairBlock::PairBlock(int capacity) {
+  constexpr int kLargest = 1 << 20;
+  if (capacity < 1 || capacity > kLargest) {
+    throw std::invalid_argument("pair block: the capacity must be between 1 and " + std::to_string(kLargest) +
+                                " pairs, not " + std::to_string(capacity));
+  }
+  const int groups = (capacity + QueryBlock::kLanes - 1) / QueryBlock::kLanes;
+  const std::size_t pairs = static_cast<std::size_t>(groups) * QueryBlock::kLanes;
+  try {
+    vertices_.resize(pairs);
+    tags_.resize(pairs);
+    groups_.resize(static_cast<std::size_t>(groups));
+  } catch (const std::bad_alloc&) {
+    const std::size_t bytes = pairs * (sizeof(std::array<VertexRef, 4>) + sizeof(std::uint64_t)) +
+                              static_cast<std::size_t>(groups) * sizeof(QueryBlock);
+    throw std::runtime_error("pair block: cannot allocate " + std::to_string(bytes) + " bytes for " +
+                             std::to_string(pairs) + " pairs");
+  }
+  for (QueryBlock& g : groups_) {
+    g.count = QueryBlock::kLanes;
+    for (int t = 0; t < 2; ++t)
+      for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c)
+          for (int lane = 0; lane < QueryBlock::kLanes; ++lane) g.x[t][k][c][lane] = 0.0;
+  }
+}
+
+void PairBlock::reset(PairKind kind) {
+  kind_ = kind;
+  size_ = 0;
+  for (QueryBlock& g : groups_) g.kind = kind;
+}
+
+void PairBlock::copy_pair(int from, int to) {
+  vertices_[static_cast<std::size_t>(to)] = vertices_[static_cast<std::size_t>(from)];
+  tags_[static_cast<std::size_t>(to)] = tags_[static_cast<std::size_t>(from)];
+  const QueryBlock& source = groups_[static_cast<std::size_t>(from / QueryBlock::kLanes)];
+  QueryBlock& target = groups_[static_cast<std::size_t>(to / QueryBlock::kLanes)];
+  const int a = from % QueryBlock::kLanes, b = to % QueryBlock::kLanes;
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c) target.x[t][k][c][b] = source.x[t][k][c][a];
+}
+
+void PairBlock::swap_pairs(int i, int j) {
+  std::swap(vertices_[static_cast<std::size_t>(i)], vertices_[static_cast<std::size_t>(j)]);
+  std::swap(tags_[static_cast<std::size_t>(i)], tags_[static_cast<std::size_t>(j)]);
+  QueryBlock& gi = groups_[static_cast<std::size_t>(i / QueryBlock::kLanes)];
+  QueryBlock& gj = groups_[static_cast<std::size_t>(j / QueryBlock::kLanes)];
+  const int a = i % QueryBlock::kLanes, b = j % QueryBlock::kLanes;
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c) std::swap(gi.x[t][k][c][a], gj.x[t][k][c][b]);
+}
+
+int PairBlock::compact(int count, const std::uint8_t* keep) {
+  int kept = 0;
+  for (int i = 0; i < count; ++i) {
+    if (!keep[i]) continue;
+    if (kept != i) copy_pair(i, kept);
+    ++kept;
+  }
+  for (int i = count; i < size_; ++i) copy_pair(i, kept + (i - count));
+  size_ = kept + (size_ - count);
+  return kept;
+}
+
+namespace {
+
+// culled[i] for pairs [0, count) of `block`: one projection filter pass over its lane groups, then, with
+// `nonpenetration`, the non-penetration filter on the pairs the pass left.
+void filter_pass(const PairBlock& block, int count, const CcdSettings& settings,
+                 const ProjectionFilterOptions& options, BlockIsa isa, BlockPass pass, bool nonpenetration,
+                 std::uint8_t* culled) {
+  constexpr int lanes = QueryBlock::kLanes;
+  std::uint8_t group_culled[lanes];
+  for (int g = 0; g * lanes < count; ++g) {
+    projection_filter_block(block.group(g), settings, options, group_culled, isa, pass);
+    const int n = count - g * lanes < lanes ? count - g * lanes : lanes;
+    for (int lane = 0; lane < n; ++lane) culled[g * lanes + lane] = group_culled[lane];
+  }
+  if (!nonpenetration) return;
+  for (int i = 0; i < count; ++i) {
+    if (!culled[i] && nonpenetration_filter_culls(block.query(i), settings)) culled[i] = 1;
+  }
+}
+
+// Keeps the pairs [0, count) whose culled flag is 0 (flags turned into keep flags in place); returns how many.
+int keep_unculled(PairBlock& block, int count, std::vector<std::uint8_t>& culled) {
+  for (int i = 0; i < count; ++i) culled[static_cast<std::size_t>(i)] ^= 1;
+  return block.compact(count, culled.data());
+}
+
+}  // namespace
+
+int cull_pairs(PairBlock& block, int count, CcdFilter filter, const CcdSettings& settings,
+               const ProjectionFilterOptions& options, BlockIsa isa, std::vector<std::uint8_t>& culled) {
+  if (culled.size() < static_cast<std::size_t>(count)) culled.resize(static_cast<std::size_t>(count));
+  if (filter == CcdFilter::None) return count;
+  if (filter == CcdFilter::NonPenetration) {
+    for (int i = 0; i < count; ++i) culled[static_cast<std::size_t>(i)] = nonpenetration_filter_culls(block.query(i), settings);
+    return keep_unculled(block, count, culled);
+  }
+  // The non-penetration filter says nothing with a thickness (nonpenetration_filter_culls is false then).
+  const bool nonpenetration = filter == CcdFilter::Combined && settings.thickness == 0.0;
+  if (!options.use_primitive_normals) {
+    filter_pass(block, count, settings, options, isa, BlockPass::All, nonpenetration, culled.data());
+    return keep_unculled(block, count, culled);
+  }
+  // The primitives' normals cull most pairs: they run first on every pair, the other directions on the survivors.
+  filter_pass(block, count, settings, options, isa, BlockPass::Normals, false, culled.data());
+  const int survivors = keep_unculled(block, count, culled);
+  filter_pass(block, survivors, settings, options, isa, BlockPass::AfterNormals, nonpenetration, culled.data());
+  return keep_unculled(block, survivors, culled);
+}
+
+}  // namespace clothcd::ccd::detail

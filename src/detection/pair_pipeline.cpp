@@ -1,0 +1,177 @@
+// The narrow phase as a candidate sink (see pair_pipeline.hpp).
+#include "pair_pipeline.hpp"
+
+#include <utility>
+
+#include "ccd/after_filter.hpp"
+#include "parallel_loop.hpp"
+
+namespace clothcd::detail {
+
+void PairKeys::assign(const std::vector<BodyFrames>& bodies) {
+  const std::size_t n = bodies.size();
+  vertex_base_.assign(n + 1, 0);
+  face_base_.assign(n + 1, 0);
+  edge_base_.assign(n + 1, 0);
+  for (std::size_t b = 0; b < n; ++b) {
+    const broadphase::BodyTopology& t = *bodies[b].topology;
+    vertex_base_[b + 1] = vertex_base_[b] + static_cast<std::uint64_t>(t.vertex_count);
+    face_base_[b + 1] = face_base_[b] + static_cast<std::uint64_t>(t.face_count());
+    edge_base_[b + 1] = edge_base_[b] + static_cast<std::uint64_t>(t.edge_count());
+  }
+}
+
+void PipelineCounts::add(const PipelineCounts& o) {
+  vertex_face += o.vertex_face;
+  edge_edge += o.edge_edge;
+  culled += o.culled;
+  network_dropped += o.network_dropped;
+  network_overruled += o.network_overruled;
+  network_kept += o.network_kept;
+  culling_ms += o.culling_ms;
+  network_ms += o.network_ms;
+  network_filters_ms += o.network_filters_ms;
+  exact_ms += o.exact_ms;
+}
+
+PairPipeline::PairPipeline(int block_pairs)
+    : isa_(ccd::detail::fastest_block_isa()), workers_([block_pairs] { return Worker(block_pairs); }) {
+  Worker probe(block_pairs);  // a block that cannot be made is an error here, not in a search thread
+}
+
+void PairPipeline::begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys,
+                         const PipelineSettings& settings) {
+  bodies_ = &bodies;
+  keys_ = &keys;
+  settings_ = &settings;
+  for (Worker& w : workers_) {  // what a search left when it threw
+    w.block.reset(PairKind::VertexFace);
+    w.vertex_face.clear();
+    w.edge_edge.clear();
+    w.counts = PipelineCounts{};
+  }
+}
+
+void PairPipeline::consume(const broadphase::CandidateSet& chunk) {
+  Worker& w = workers_.local();
+  const std::vector<BodyFrames>& bodies = *bodies_;
+  const auto row = [&](const Vertices* positions, int vertex) { return positions->data() + 3 * vertex; };
+  // Appends the pair of vertices `v` to the block, running the block first when it is full.
+  const auto add = [&](const std::array<VertexRef, 4>& v, std::uint64_t key) {
+    if (w.block.full()) run_block(w);
+    std::array<const double*, 4> start, end;
+    for (int k = 0; k < 4; ++k) {
+      const BodyFrames& body = bodies[static_cast<std::size_t>(v[k].body)];
+      start[k] = row(body.start, v[k].vertex);
+      end[k] = row(body.end, v[k].vertex);
+    }
+    w.block.push(v, key, start, end);
+  };
+  w.block.reset(PairKind::VertexFace);
+  for (const broadphase::VertexFaceCandidate& c : chunk.vertex_face) {
+    const auto& faces = bodies[static_cast<std::size_t>(c.face_body)].topology->faces;
+    add({VertexRef{c.vertex_body, c.vertex}, VertexRef{c.face_body, faces(c.face, 0)},
+         VertexRef{c.face_body, faces(c.face, 1)}, VertexRef{c.face_body, faces(c.face, 2)}},
+        keys_->vertex_face(c.vertex_body, c.vertex, c.face_body, c.face));
+  }
+  run_block(w);
+  w.block.reset(PairKind::EdgeEdge);
+  for (const broadphase::EdgeEdgeCandidate& c : chunk.edge_edge) {
+    const std::vector<int>& ea = bodies[static_cast<std::size_t>(c.body_a)].topology->edges;
+    const std::vector<int>& eb = bodies[static_cast<std::size_t>(c.body_b)].topology->edges;
+    add({VertexRef{c.body_a, ea[2 * static_cast<std::size_t>(c.edge_a)]},
+         VertexRef{c.body_a, ea[2 * static_cast<std::size_t>(c.edge_a) + 1]},
+         VertexRef{c.body_b, eb[2 * static_cast<std::size_t>(c.edge_b)]},
+         VertexRef{c.body_b, eb[2 * static_cast<std::size_t>(c.edge_b) + 1]}},
+        keys_->edge_edge(c.body_a, c.edge_a, c.body_b, c.edge_b));
+  }
+  run_block(w);
+  w.counts.vertex_face += static_cast<long>(chunk.vertex_face.size());
+  w.counts.edge_edge += static_cast<long>(chunk.edge_edge.size());
+}
+
+int PairPipeline::cull_with_network(Worker& w) const {
+  using learning::PairDecision;
+  ccd::detail::PairBlock& block = w.block;
+  const PipelineSettings& s = *settings_;
+  const int n = block.size();
+  auto t = StageClock::now();
+  w.queries.resize(static_cast<std::size_t>(n));
+  w.decisions.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) w.queries[static_cast<std::size_t>(i)] = block.query(i);
+  s.network->decide(w.queries.data(), static_cast<std::size_t>(n), w.features, w.decisions.data());
+  w.counts.network_ms += milliseconds_since(t);
+
+  t = StageClock::now();
+  // Order the pairs Drop, Check, Keep (the order within a block does not matter: collisions are sorted by key).
+  auto move_front = [&](PairDecision wanted, int first) {
+    int next = first;
+    for (int i = first; i < n; ++i) {
+      if (w.decisions[static_cast<std::size_t>(i)] != wanted) continue;
+      block.swap_pairs(i, next);
+      std::swap(w.decisions[static_cast<std::size_t>(i)], w.decisions[static_cast<std::size_t>(next)]);
+      ++next;
+    }
+    return next - first;
+  };
+  const int drops = move_front(PairDecision::Drop, 0);
+  const int checks = move_front(PairDecision::Check, drops);
+  // The combined filters confirm or overrule the drops, then check the Check pairs; Keep pairs skip them.
+  const ccd::CcdFilter combined = ccd::CcdFilter::Combined;
+  const int drops_left = ccd::detail::cull_pairs(block, drops, combined, s.ccd, s.projection, isa_, w.culled);
+  // The Check pairs now follow the drops left; bring them to the front (the block's order does not matter).
+  for (int j = 0; j < checks; ++j) block.swap_pairs(j, drops_left + j);
+  ccd::detail::cull_pairs(block, checks, combined, s.ccd, s.projection, isa_, w.culled);
+  w.counts.network_filters_ms += milliseconds_since(t);
+  w.counts.network_dropped += drops - drops_left;
+  w.counts.network_overruled += drops_left;
+  w.counts.network_kept += n - drops - checks;
+  return block.size();
+}
+
+void PairPipeline::run_block(Worker& w) const {
+  ccd::detail::PairBlock& block = w.block;
+  const int n = block.size();
+  if (n == 0) return;
+  const PipelineSettings& s = *settings_;
+  auto t = StageClock::now();
+  const int survivors = s.network != nullptr
+                            ? cull_with_network(w)
+                            : ccd::detail::cull_pairs(block, n, s.filter, s.ccd, s.projection, isa_, w.culled);
+  w.counts.culled += n - survivors;
+  w.counts.culling_ms += milliseconds_since(t);
+  if (s.exact) {
+    t = StageClock::now();
+    // The filters' tests are not repeated (the network's Keep pairs met none, so nothing is skipped there).
+    const ccd::CcdFilter applied = s.network != nullptr ? ccd::CcdFilter::None : s.filter;
+    std::vector<KeyedCollision>& hits = block.kind() == PairKind::VertexFace ? w.vertex_face : w.edge_edge;
+    for (int i = 0; i < survivors; ++i) {
+      const ccd::CcdResult r = ccd::detail::continuous_collision_after_filter(block.query(i), s.ccd, applied);
+      if (!r.hit) continue;
+      KeyedCollision& h = hits.emplace_back();
+      h.key = block.tag(i);
+      h.collision.kind = block.kind();
+      h.collision.vertices = block.vertices(i);
+      h.collision.toi = r.toi;
+      h.collision.parameters = r.parameters;
+      h.collision.normal = r.normal;
+      h.collision.conservative = r.state == ccd::CcdState::ConservativeHit;
+    }
+    w.counts.exact_ms += milliseconds_since(t);
+  }
+  block.reset(block.kind());
+}
+
+void PairPipeline::finish(std::vector<KeyedCollision>& vertex_face, std::vector<KeyedCollision>& edge_edge,
+                          PipelineCounts& counts) {
+  for (Worker& w : workers_) {
+    vertex_face.insert(vertex_face.end(), w.vertex_face.begin(), w.vertex_face.end());
+    edge_edge.insert(edge_edge.end(), w.edge_edge.begin(), w.edge_edge.end());
+    counts.add(w.counts);
+    w.vertex_face.clear();
+    w.edge_edge.clear();
+    w.counts = PipelineCounts{};
+  }
+}
+
+}  // namespace clothcd::detail

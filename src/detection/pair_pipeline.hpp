@@ -1,0 +1,122 @@
+#pragma once
+// The detector's narrow phase as a candidate sink (internal): each thread turns the candidate chunks the broad phase
+// hands it into pair blocks (vertices, canonical sort key, positions), culls a block (the filters, or the network
+// with the filters behind it), runs the exact test on the survivors while they are in cache, keeps only the
+// collisions and reuses the block. Nothing proportional to the number of candidates is stored.
+#include <tbb/enumerable_thread_specific.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "ccd/pair_block.hpp"
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/traversal.hpp"
+#include "clothcd/ccd/ccd.hpp"
+#include "clothcd/detection/collision.hpp"
+#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/mesh/triangle_mesh.hpp"
+
+namespace clothcd::detail {
+
+/// One body as the narrow phase reads it; the pointers stay valid during the search.
+struct BodyFrames {
+  const broadphase::BodyTopology* topology = nullptr;  ///< Faces and edges.
+  const Vertices* start = nullptr;                     ///< Positions at the start of the step.
+  const Vertices* end = nullptr;                       ///< Positions at the end of the step.
+};
+
+/// Canonical order of pairs by one integer key: numbering every body's vertices (faces, edges) one after the other in
+/// body order maps (body, index) to a dense number with the same order, and dense first * (count of the second kind) +
+/// dense second orders like the candidate's four fields (broadphase::sort_candidates' order within one kind).
+class PairKeys {
+ public:
+  /// Numbers the primitives of `bodies` (in body order).
+  void assign(const std::vector<BodyFrames>& bodies);
+  /// Key of vertex `vertex` of `vertex_body` against face `face` of `face_body`.
+  [[nodiscard]] std::uint64_t vertex_face(int vertex_body, int vertex, int face_body, int face) const {
+    return (vertex_base_[vertex_body] + static_cast<std::uint64_t>(vertex)) * face_base_.back() +
+           face_base_[face_body] + static_cast<std::uint64_t>(face);
+  }
+  /// Key of edge `edge_a` of `body_a` against edge `edge_b` of `body_b`.
+  [[nodiscard]] std::uint64_t edge_edge(int body_a, int edge_a, int body_b, int edge_b) const {
+    return (edge_base_[body_a] + static_cast<std::uint64_t>(edge_a)) * edge_base_.back() + edge_base_[body_b] +
+           static_cast<std::uint64_t>(edge_b);
+  }
+
+ private:
+  std::vector<std::uint64_t> vertex_base_, face_base_, edge_base_;  // per body, and the total at the end
+};
+
+/// A collision and its canonical sort key (PairKeys).
+struct KeyedCollision {
+  std::uint64_t key = 0;  ///< Sort key within its kind.
+  Collision collision;    ///< The collision.
+};
+
+/// How the pipeline treats the pairs of one search.
+struct PipelineSettings {
+  ccd::CcdFilter filter = ccd::CcdFilter::Combined;  ///< Culling without a network.
+  ccd::CcdSettings ccd;                              ///< Thickness and exactness.
+  ccd::ProjectionFilterOptions projection;           ///< Directions of the projection filter.
+  const NetworkCuller* network = nullptr;            ///< When set: the network, with the combined filters behind it.
+  bool exact = true;  ///< False: only count the candidates and the culled pairs (no exact test, no collisions).
+};
+
+/// Counts and thread times of the pipeline (times summed over threads).
+struct PipelineCounts {
+  long vertex_face = 0;        ///< Vertex-face candidates.
+  long edge_edge = 0;          ///< Edge-edge candidates.
+  long culled = 0;             ///< Candidates the culling removed.
+  long network_dropped = 0;    ///< See DetectionStats.
+  long network_overruled = 0;  ///< See DetectionStats.
+  long network_kept = 0;       ///< See DetectionStats.
+  double culling_ms = 0;       ///< Culling, the network's part included.
+  double network_ms = 0;       ///< Features and inference.
+  double network_filters_ms = 0;  ///< The filters behind the network.
+  double exact_ms = 0;            ///< Exact tests.
+
+  /// Adds the counts and times of `o`.
+  void add(const PipelineCounts& o);
+};
+
+/// The narrow phase as a broad-phase sink (see the file comment).
+class PairPipeline final : public broadphase::CandidateSink {
+ public:
+  /// A pipeline whose threads each hold a block of `block_pairs` pairs (see ccd::detail::PairBlock).
+  explicit PairPipeline(int block_pairs);
+
+  /// Starts a search: `bodies` (indexed by body id), their keys and the settings must stay valid until finish().
+  void begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys, const PipelineSettings& settings);
+
+  /// Culls and tests one chunk of candidates (called by the search's threads).
+  void consume(const broadphase::CandidateSet& chunk) override;
+
+  /// Appends the collisions found since begin() (in no particular order) to `vertex_face` and `edge_edge`, adds the
+  /// counts to `counts`, and empties the threads' lists.
+  void finish(std::vector<KeyedCollision>& vertex_face, std::vector<KeyedCollision>& edge_edge, PipelineCounts& counts);
+
+ private:
+  // One thread's block, scratch, collisions and counts.
+  struct Worker {
+    explicit Worker(int block_pairs) : block(block_pairs) {}
+    ccd::detail::PairBlock block;
+    std::vector<std::uint8_t> culled;                     // cull_pairs' scratch
+    std::vector<ccd::CcdQuery> queries;                   // network mode: the block's queries
+    learning::PairFeatureBatch features;                  // network mode: their features
+    std::vector<learning::PairDecision> decisions;        // network mode: the network's decisions
+    std::vector<KeyedCollision> vertex_face, edge_edge;  // collisions found
+    PipelineCounts counts;
+  };
+
+  void run_block(Worker& w) const;
+  int cull_with_network(Worker& w) const;
+
+  const std::vector<BodyFrames>* bodies_ = nullptr;
+  const PairKeys* keys_ = nullptr;
+  const PipelineSettings* settings_ = nullptr;
+  ccd::detail::BlockIsa isa_;
+  tbb::enumerable_thread_specific<Worker> workers_;
+};
+
+}  // namespace clothcd::detail
