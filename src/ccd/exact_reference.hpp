@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "clothcd/detection/collision.hpp"
+#include "clothcd/ccd/pair_kind.hpp"
 
 namespace clothcd::ccd::exact {
 

@@ -10,7 +10,7 @@
 
 #include "ccd/projection_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/collision.hpp"
+#include "clothcd/ccd/pair_kind.hpp"
 
 namespace clothcd::ccd::detail {
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/detection/collision.hpp"
+#include "clothcd/ccd/pair_kind.hpp"
 
 namespace clothcd::ccd {
 
