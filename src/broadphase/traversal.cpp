@@ -183,19 +183,20 @@ constexpr int kSpawnFaces = 2048;
 template <class Overlap, class LeafWork>
 void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8_t* dirty, const Task& root,
             const LeafWork& leaf_work, const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
+  const bool wide = settings.wide_lanes && avx2_supported();
+  const bool spawn = settings.parallel && face_count(ta, root.a) + face_count(tb, root.b) >= kSpawnFaces;
   tbb::enumerable_thread_specific<TraversalStats> thread_stats;
   tbb::task_group group;
-  const bool wide = settings.wide_lanes && avx2_supported();
   auto faces = [&](const Task& t) { return face_count(ta, t.a) + (t.self ? 0 : face_count(tb, t.b)); };
   std::function<void(const Task&)> run = [&](const Task& first) {
     const auto started = Clock::now();
-    TraversalStats& task_stats = thread_stats.local();
+    TraversalStats& task_stats = spawn ? thread_stats.local() : stats;
     CandidateSet buffer;
     detail::LeafScratch scratch;
     scratch.wide_lanes = wide;
     std::vector<Task> stack{first};
     auto push = [&](const Task& t) {
-      if (settings.parallel && faces(t) >= kSpawnFaces) {
+      if (spawn && faces(t) >= kSpawnFaces) {
         group.run([&run, t] { run(t); });
       } else {
         stack.push_back(t);
@@ -212,6 +213,7 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
     pass_on(buffer, output, false);
     task_stats.task_ms += milliseconds_since(started);
   };
+  if (!spawn) return run(root);  // a serial or small search stays on the calling thread
   group.run([&] { run(root); });
   group.wait();
   for (const TraversalStats& s : thread_stats) stats.add(s);
