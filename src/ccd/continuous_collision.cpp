@@ -24,7 +24,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "ccd/after_filter.hpp"
 #include "ccd/exact_reference.hpp"
 #include "ccd/expansion_collision.hpp"
 #include "ccd/interval.hpp"
@@ -54,19 +53,19 @@ struct IVec {
   Interval c[3];
 };
 
-IVec operator-(const IVec& a, const IVec& b) {
+[[gnu::always_inline]] inline IVec operator-(const IVec& a, const IVec& b) {
   return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}};
 }
-IVec operator+(const IVec& a, const IVec& b) {
+[[gnu::always_inline]] inline IVec operator+(const IVec& a, const IVec& b) {
   return {{a.c[0] + b.c[0], a.c[1] + b.c[1], a.c[2] + b.c[2]}};
 }
-IVec hull(const IVec& a, const IVec& b) {
+[[gnu::always_inline]] inline IVec hull(const IVec& a, const IVec& b) {
   return {{detail::hull(a.c[0], b.c[0]), detail::hull(a.c[1], b.c[1]), detail::hull(a.c[2], b.c[2])}};
 }
-IVec cross(const IVec& a, const IVec& b) {
+[[gnu::always_inline]] inline IVec cross(const IVec& a, const IVec& b) {
   return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
 }
-Interval dot(const IVec& a, const IVec& b) {
+[[gnu::always_inline]] inline Interval dot(const IVec& a, const IVec& b) {
   return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2];
 }
 
@@ -383,7 +382,7 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings) {
     throw std::invalid_argument("CCD thickness must be finite and >= 0, got " + std::to_string(settings.thickness));
 }
 
-CcdResult detail::continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings,
+CcdResult continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings,
                                                     CcdFilter applied) {
   if (!all_finite(query) || !(settings.thickness >= 0.0) || !std::isfinite(settings.thickness)) {
     CcdResult result;
@@ -403,7 +402,7 @@ CcdResult detail::continuous_collision_after_filter(const CcdQuery& query, const
 }
 
 CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings) {
-  return detail::continuous_collision_after_filter(query, settings, CcdFilter::None);
+  return continuous_collision_after_filter(query, settings, CcdFilter::None);
 }
 
 bool exact_collision_reference(const CcdQuery& query) {

@@ -1,4 +1,4 @@
-// Pair blocks and their culling (see pair_block.hpp).
+// Pair blocks and their culling (see clothcd/ccd/pair_block.hpp).
 #include "ccd/pair_block.hpp"
 
 #include <new>
@@ -6,7 +6,33 @@
 #include <string>
 #include <utility>
 
-namespace clothcd::ccd::detail {
+namespace clothcd::ccd {
+
+void PairLanes::set(int lane, const CcdQuery& query) {
+  for (int k = 0; k < 4; ++k) {
+    for (int c = 0; c < 3; ++c) {
+      x[0][k][c][lane] = query.start[k][c];
+      x[1][k][c][lane] = query.end[k][c];
+    }
+  }
+}
+
+CcdQuery PairLanes::query(int lane) const {
+  CcdQuery q;
+  q.kind = kind;
+  for (int k = 0; k < 4; ++k) {
+    q.start[k] = Eigen::Vector3d(x[0][k][0][lane], x[0][k][1][lane], x[0][k][2][lane]);
+    q.end[k] = Eigen::Vector3d(x[1][k][0][lane], x[1][k][1][lane], x[1][k][2][lane]);
+  }
+  return q;
+}
+
+void PairLanes::pad_unused() {
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c)
+        for (int lane = count; lane < kLanes; ++lane) x[t][k][c][lane] = x[t][k][c][0];
+}
 
 PairBlock::PairBlock(int capacity) {
   constexpr int kLargest = 1 << 20;
@@ -14,39 +40,39 @@ PairBlock::PairBlock(int capacity) {
     throw std::invalid_argument("pair block: the capacity must be between 1 and " + std::to_string(kLargest) +
                                 " pairs, not " + std::to_string(capacity));
   }
-  const int groups = (capacity + QueryBlock::kLanes - 1) / QueryBlock::kLanes;
-  const std::size_t pairs = static_cast<std::size_t>(groups) * QueryBlock::kLanes;
+  const int groups = (capacity + PairLanes::kLanes - 1) / PairLanes::kLanes;
+  const std::size_t pairs = static_cast<std::size_t>(groups) * PairLanes::kLanes;
   try {
     vertices_.resize(pairs);
     tags_.resize(pairs);
     groups_.resize(static_cast<std::size_t>(groups));
   } catch (const std::bad_alloc&) {
     const std::size_t bytes = pairs * (sizeof(std::array<VertexRef, 4>) + sizeof(std::uint64_t)) +
-                              static_cast<std::size_t>(groups) * sizeof(QueryBlock);
+                              static_cast<std::size_t>(groups) * sizeof(PairLanes);
     throw std::runtime_error("pair block: cannot allocate " + std::to_string(bytes) + " bytes for " +
                              std::to_string(pairs) + " pairs");
   }
-  for (QueryBlock& g : groups_) {
-    g.count = QueryBlock::kLanes;
+  for (PairLanes& g : groups_) {
+    g.count = PairLanes::kLanes;
     for (int t = 0; t < 2; ++t)
       for (int k = 0; k < 4; ++k)
         for (int c = 0; c < 3; ++c)
-          for (int lane = 0; lane < QueryBlock::kLanes; ++lane) g.x[t][k][c][lane] = 0.0;
+          for (int lane = 0; lane < PairLanes::kLanes; ++lane) g.x[t][k][c][lane] = 0.0;
   }
 }
 
 void PairBlock::reset(PairKind kind) {
   kind_ = kind;
   size_ = 0;
-  for (QueryBlock& g : groups_) g.kind = kind;
+  for (PairLanes& g : groups_) g.kind = kind;
 }
 
 void PairBlock::copy_pair(int from, int to) {
   vertices_[static_cast<std::size_t>(to)] = vertices_[static_cast<std::size_t>(from)];
   tags_[static_cast<std::size_t>(to)] = tags_[static_cast<std::size_t>(from)];
-  const QueryBlock& source = groups_[static_cast<std::size_t>(from / QueryBlock::kLanes)];
-  QueryBlock& target = groups_[static_cast<std::size_t>(to / QueryBlock::kLanes)];
-  const int a = from % QueryBlock::kLanes, b = to % QueryBlock::kLanes;
+  const PairLanes& source = groups_[static_cast<std::size_t>(from / PairLanes::kLanes)];
+  PairLanes& target = groups_[static_cast<std::size_t>(to / PairLanes::kLanes)];
+  const int a = from % PairLanes::kLanes, b = to % PairLanes::kLanes;
   for (int t = 0; t < 2; ++t)
     for (int k = 0; k < 4; ++k)
       for (int c = 0; c < 3; ++c) target.x[t][k][c][b] = source.x[t][k][c][a];
@@ -55,9 +81,9 @@ void PairBlock::copy_pair(int from, int to) {
 void PairBlock::swap_pairs(int i, int j) {
   std::swap(vertices_[static_cast<std::size_t>(i)], vertices_[static_cast<std::size_t>(j)]);
   std::swap(tags_[static_cast<std::size_t>(i)], tags_[static_cast<std::size_t>(j)]);
-  QueryBlock& gi = groups_[static_cast<std::size_t>(i / QueryBlock::kLanes)];
-  QueryBlock& gj = groups_[static_cast<std::size_t>(j / QueryBlock::kLanes)];
-  const int a = i % QueryBlock::kLanes, b = j % QueryBlock::kLanes;
+  PairLanes& gi = groups_[static_cast<std::size_t>(i / PairLanes::kLanes)];
+  PairLanes& gj = groups_[static_cast<std::size_t>(j / PairLanes::kLanes)];
+  const int a = i % PairLanes::kLanes, b = j % PairLanes::kLanes;
   for (int t = 0; t < 2; ++t)
     for (int k = 0; k < 4; ++k)
       for (int c = 0; c < 3; ++c) std::swap(gi.x[t][k][c][a], gj.x[t][k][c][b]);
@@ -75,6 +101,12 @@ int PairBlock::compact(int count, const std::uint8_t* keep) {
   return kept;
 }
 
+int cull_pair_block(PairBlock& block, int count, CcdFilter filter, const CcdSettings& settings,
+                    const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled) {
+  return detail::cull_pairs(block, count, filter, settings, options, detail::fastest_block_isa(), culled);
+}
+
+namespace detail {
 namespace {
 
 // culled[i] for pairs [0, count) of `block`: one projection filter pass over its lane groups, then, with
@@ -82,7 +114,7 @@ namespace {
 void filter_pass(const PairBlock& block, int count, const CcdSettings& settings,
                  const ProjectionFilterOptions& options, BlockIsa isa, BlockPass pass, bool nonpenetration,
                  std::uint8_t* culled) {
-  constexpr int lanes = QueryBlock::kLanes;
+  constexpr int lanes = PairLanes::kLanes;
   std::uint8_t group_culled[lanes];
   for (int g = 0; g * lanes < count; ++g) {
     projection_filter_block(block.group(g), settings, options, group_culled, isa, pass);
@@ -124,4 +156,5 @@ int cull_pairs(PairBlock& block, int count, CcdFilter filter, const CcdSettings&
   return keep_unculled(block, survivors, culled);
 }
 
-}  // namespace clothcd::ccd::detail
+}  // namespace detail
+}  // namespace clothcd::ccd

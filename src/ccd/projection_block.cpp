@@ -196,32 +196,6 @@ __attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, doubl
 
 }  // namespace
 
-void QueryBlock::set(int lane, const CcdQuery& query) {
-  for (int k = 0; k < 4; ++k) {
-    for (int c = 0; c < 3; ++c) {
-      x[0][k][c][lane] = query.start[k][c];
-      x[1][k][c][lane] = query.end[k][c];
-    }
-  }
-}
-
-CcdQuery QueryBlock::query(int lane) const {
-  CcdQuery q;
-  q.kind = kind;
-  for (int k = 0; k < 4; ++k) {
-    q.start[k] = Eigen::Vector3d(x[0][k][0][lane], x[0][k][1][lane], x[0][k][2][lane]);
-    q.end[k] = Eigen::Vector3d(x[1][k][0][lane], x[1][k][1][lane], x[1][k][2][lane]);
-  }
-  return q;
-}
-
-void QueryBlock::pad_unused() {
-  for (int t = 0; t < 2; ++t)
-    for (int k = 0; k < 4; ++k)
-      for (int c = 0; c < 3; ++c)
-        for (int lane = count; lane < kLanes; ++lane) x[t][k][c][lane] = x[t][k][c][0];
-}
-
 std::vector<BlockIsa> supported_block_isas() {
   std::vector<BlockIsa> isas{BlockIsa::Baseline};
   if (avx2_supported()) isas.push_back(BlockIsa::Avx2);

@@ -5,24 +5,12 @@
 #include <vector>
 
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/ccd/pair_block.hpp"
 
 namespace clothcd::ccd::detail {
 
-/// Positions of up to kLanes pairs of one kind: x[time][point][axis][lane], time 0 = start, 1 = end, points in
-/// CcdQuery order. The filter computes on every lane; lanes at or beyond `count` must hold copies (pad_unused()).
-struct QueryBlock {
-  static constexpr int kLanes = 16;  ///< Pairs per block.
-  PairKind kind = PairKind::VertexFace;  ///< Kind of every pair of the block.
-  int count = 0;                         ///< Pairs in use (lanes 0 .. count - 1).
-  alignas(64) double x[2][4][3][kLanes];  ///< Coordinates (left uninitialised: filled lane by lane).
-
-  /// Stores `query`'s positions in lane `lane` (the kind is the block's).
-  void set(int lane, const CcdQuery& query);
-  /// The query of lane `lane`.
-  [[nodiscard]] CcdQuery query(int lane) const;
-  /// Copies lane 0 (count >= 1) into the lanes from count on.
-  void pad_unused();
-};
+/// The block filters' lane group (see PairLanes).
+using QueryBlock = PairLanes;
 
 /// The instruction sets the block filter is compiled for. Every one runs the same IEEE operations in the same order
 /// (no fused multiply-add: the library is built as ISO C++, so no contraction), so all give the same verdicts.

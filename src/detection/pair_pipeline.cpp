@@ -3,7 +3,6 @@
 
 #include <utility>
 
-#include "ccd/after_filter.hpp"
 #include "parallel_loop.hpp"
 
 namespace clothcd::detail {
@@ -35,7 +34,7 @@ void PipelineCounts::add(const PipelineCounts& o) {
 }
 
 PairPipeline::PairPipeline(int block_pairs)
-    : isa_(ccd::detail::fastest_block_isa()), workers_([block_pairs] { return Worker(block_pairs); }) {
+    : workers_([block_pairs] { return Worker(block_pairs); }) {
   Worker probe(block_pairs);  // a block that cannot be made is an error here, not in a search thread
 }
 
@@ -92,7 +91,7 @@ void PairPipeline::consume(const broadphase::CandidateSet& chunk) {
 
 int PairPipeline::cull_with_network(Worker& w) const {
   using learning::PairDecision;
-  ccd::detail::PairBlock& block = w.block;
+  ccd::PairBlock& block = w.block;
   const PipelineSettings& s = *settings_;
   const int n = block.size();
   auto t = StageClock::now();
@@ -118,10 +117,10 @@ int PairPipeline::cull_with_network(Worker& w) const {
   const int checks = move_front(PairDecision::Check, drops);
   // The combined filters confirm or overrule the drops, then check the Check pairs; Keep pairs skip them.
   const ccd::CcdFilter combined = ccd::CcdFilter::Combined;
-  const int drops_left = ccd::detail::cull_pairs(block, drops, combined, s.ccd, s.projection, isa_, w.culled);
+  const int drops_left = ccd::cull_pair_block(block, drops, combined, s.ccd, s.projection, w.culled);
   // The Check pairs now follow the drops left; bring them to the front (the block's order does not matter).
   for (int j = 0; j < checks; ++j) block.swap_pairs(j, drops_left + j);
-  ccd::detail::cull_pairs(block, checks, combined, s.ccd, s.projection, isa_, w.culled);
+  ccd::cull_pair_block(block, checks, combined, s.ccd, s.projection, w.culled);
   w.counts.network_filters_ms += milliseconds_since(t);
   w.counts.network_dropped += drops - drops_left;
   w.counts.network_overruled += drops_left;
@@ -130,14 +129,14 @@ int PairPipeline::cull_with_network(Worker& w) const {
 }
 
 void PairPipeline::run_block(Worker& w) const {
-  ccd::detail::PairBlock& block = w.block;
+  ccd::PairBlock& block = w.block;
   const int n = block.size();
   if (n == 0) return;
   const PipelineSettings& s = *settings_;
   auto t = StageClock::now();
   const int survivors = s.network != nullptr
                             ? cull_with_network(w)
-                            : ccd::detail::cull_pairs(block, n, s.filter, s.ccd, s.projection, isa_, w.culled);
+                            : ccd::cull_pair_block(block, n, s.filter, s.ccd, s.projection, w.culled);
   w.counts.culled += n - survivors;
   w.counts.culling_ms += milliseconds_since(t);
   if (s.exact) {
@@ -146,7 +145,7 @@ void PairPipeline::run_block(Worker& w) const {
     const ccd::CcdFilter applied = s.network != nullptr ? ccd::CcdFilter::None : s.filter;
     std::vector<KeyedCollision>& hits = block.kind() == PairKind::VertexFace ? w.vertex_face : w.edge_edge;
     for (int i = 0; i < survivors; ++i) {
-      const ccd::CcdResult r = ccd::detail::continuous_collision_after_filter(block.query(i), s.ccd, applied);
+      const ccd::CcdResult r = ccd::continuous_collision_after_filter(block.query(i), s.ccd, applied);
       if (!r.hit) continue;
       KeyedCollision& h = hits.emplace_back();
       h.key = block.tag(i);

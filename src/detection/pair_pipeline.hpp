@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "ccd/pair_block.hpp"
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/ccd/pair_block.hpp"
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/network_culling.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
@@ -83,7 +83,7 @@ struct PipelineCounts {
 /// The narrow phase as a broad-phase sink (see the file comment).
 class PairPipeline final : public broadphase::CandidateSink {
  public:
-  /// A pipeline whose threads each hold a block of `block_pairs` pairs (see ccd::detail::PairBlock).
+  /// A pipeline whose threads each hold a block of `block_pairs` pairs (see ccd::PairBlock).
   explicit PairPipeline(int block_pairs);
 
   /// Starts a search: `bodies` (indexed by body id), their keys and the settings must stay valid until finish().
@@ -100,8 +100,8 @@ class PairPipeline final : public broadphase::CandidateSink {
   // One thread's block, scratch, collisions and counts.
   struct Worker {
     explicit Worker(int block_pairs) : block(block_pairs) {}
-    ccd::detail::PairBlock block;
-    std::vector<std::uint8_t> culled;                     // cull_pairs' scratch
+    ccd::PairBlock block;
+    std::vector<std::uint8_t> culled;                     // cull_pair_block's scratch
     std::vector<ccd::CcdQuery> queries;                   // network mode: the block's queries
     learning::PairFeatureBatch features;                  // network mode: their features
     std::vector<learning::PairDecision> decisions;        // network mode: the network's decisions
@@ -115,7 +115,6 @@ class PairPipeline final : public broadphase::CandidateSink {
   const std::vector<BodyFrames>* bodies_ = nullptr;
   const PairKeys* keys_ = nullptr;
   const PipelineSettings* settings_ = nullptr;
-  ccd::detail::BlockIsa isa_;
   tbb::enumerable_thread_specific<Worker> workers_;
 };
 

@@ -1,10 +1,9 @@
-// The narrow phase behind a filter (ccd::detail::continuous_collision_after_filter) skips the filter tests it would
+// The narrow phase behind a filter (ccd::continuous_collision_after_filter) skips the filter tests it would
 // repeat; on every query the filter passes it must answer exactly like continuous_collision, the reference.
 #include <catch2/catch.hpp>
 
 #include <random>
 
-#include "ccd/after_filter.hpp"
 #include "ccd_test_support.hpp"
 
 using namespace clothcd;
@@ -62,7 +61,7 @@ TEST_CASE("CCD behind a filter answers like the full CCD on every pair the filte
     ++passed;
     const ccd::CcdResult reference = ccd::continuous_collision(query, settings);
     hits += reference.hit ? 1 : 0;
-    check_same(ccd::detail::continuous_collision_after_filter(query, settings, filter), reference);
+    check_same(ccd::continuous_collision_after_filter(query, settings, filter), reference);
   }
   // The set must exercise both answers.
   CHECK(passed > 50);

@@ -16,7 +16,7 @@ namespace {
 using clothcd::PairKind;
 using clothcd::VertexRef;
 namespace ccd = clothcd::ccd;
-using ccd::detail::PairBlock;
+using ccd::PairBlock;
 
 // Pairs of one kind near each other, moving a little: some collide, many are culled, some are not.
 std::vector<ccd::CcdQuery> random_pairs(PairKind kind, int count, unsigned seed) {
