@@ -9,6 +9,7 @@ packages=(
   libassimp-dev        # reading 3DS, BLEND, DAE, glTF, ... (OBJ, PLY, OFF, STL have readers of their own)
   catch2               # the test framework
   libcli11-dev         # the clothcd program's subcommands and options
+  nlohmann-json3-dev   # JSON: model cards, the --json reports of the clothcd program
   libgmp-dev           # exact rational arithmetic: the CCD reference and its uncertain-case fallback
   libtbb-dev           # parallel broad phase and batched culling on both cores
   libarchive-dev       # extracting the obstacle models from libcgal-demo's data archive

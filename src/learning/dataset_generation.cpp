@@ -13,28 +13,10 @@
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/simulation/scene.hpp"
 #include "clothcd/simulation/simulator.hpp"
+#include "learning/split_mix64.hpp"
 
 namespace clothcd::learning {
 namespace {
-
-// SplitMix64: the same stream on every platform (std distributions are implementation-defined).
-struct SplitMix64 {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  // Uniform in [0, n) by rejection, so no index is favoured.
-  std::size_t below(std::size_t n) {
-    const std::uint64_t limit = UINT64_MAX - UINT64_MAX % n;
-    std::uint64_t r = next();
-    while (r >= limit) r = next();
-    return static_cast<std::size_t>(r % n);
-  }
-  double unit() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-};
 
 // The first `keep` entries of a seeded partial Fisher-Yates shuffle of 0..n-1, sorted so rows keep canonical order.
 std::vector<std::size_t> sample_indices(std::size_t n, std::size_t keep, SplitMix64& rng) {

@@ -10,21 +10,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "learning/split_mix64.hpp"
+
 namespace clothcd::learning {
 namespace {
 
 const char* const kLabelColumns[] = {"filter_label", "exact_label", "type", "scene", "split"};
-
-// SplitMix64: a tiny generator whose output is fixed by its definition, so splits are identical everywhere.
-struct SplitMix64 {
-  unsigned long long state;
-  unsigned long long next() {
-    unsigned long long z = (state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-};
 
 void seeded_shuffle(std::vector<std::size_t>& order, unsigned long long seed) {
   SplitMix64 rng{seed};

@@ -5,26 +5,21 @@
 #include <cmath>
 #include <vector>
 
+#include "learning/split_mix64.hpp"
+
 namespace clothcd::learning {
 namespace {
 
-unsigned long long next(unsigned long long& state) {
-  unsigned long long z = (state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
 // Uniform in [-1, 1).
 double symmetric_unit(unsigned long long& state) {
-  return 2.0 * static_cast<double>(next(state) >> 11) * 0x1.0p-53 - 1.0;
+  return 2.0 * static_cast<double>(split_mix64_next(state) >> 11) * 0x1.0p-53 - 1.0;
 }
 
 }  // namespace
 
 PairGeometry random_pair(unsigned long long& state, double motion) {
   PairGeometry pair;
-  pair.kind = next(state) % 2 ? PairType::EdgeEdge : PairType::VertexFace;
+  pair.kind = split_mix64_next(state) % 2 ? PairType::EdgeEdge : PairType::VertexFace;
   const double scale = std::pow(10.0, 2.0 * symmetric_unit(state));
   Eigen::Vector3d offset;
   for (int a = 0; a < 3; ++a) offset[a] = 100.0 * symmetric_unit(state);
