@@ -8,7 +8,8 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 clothcd="${CLOTHCD_BUILD_DIR:-$root/build}/bin/clothcd"
-models="$root/.cache/models"
+models="${CLOTHCD_CACHE:-$root/.cache/models}"
+export CLOTHCD_CACHE=$models  # every command finds the models set-up fetched
 out="$root/out/main"
 rm -rf "$out"
 mkdir -p "$out"
@@ -16,7 +17,7 @@ mkdir -p "$out"
 step() { printf '\n== %s\n' "$*"; }
 
 step "obstacle models (Debian packages -> $models)"
-"$clothcd" meshes --dir "$models" | tee "$out/models.csv"
+"$clothcd" meshes --cache "$models" | tee "$out/models.csv"
 "$clothcd" info "$models/rabbit.off" | tee "$out/rabbit-info.txt"
 
 step "QEM: the rabbit to 10% of its faces, and its oriented boxes"
@@ -34,8 +35,8 @@ step "pair-culling network: pairs from simulated steps, training with neuron sel
 "$clothcd" evaluate "$root/models/default" "$out/pairs.csv" --roc "$out/default-model-roc" | tee "$out/evaluate-default.txt"
 
 step "cloth A falls on a box, the trained network culling the CCD candidates (frames, stats.csv, pictures)"
-"$clothcd" simulate --scene box --cloth A --steps 300 --frames-every 30 --culling network --network-model "$out/model" \
+"$clothcd" simulate --scene box --cloth A --steps 300 --frames-every 30 --filter network --network "$out/model" \
   --out "$out/box" | tee "$out/simulate.txt"
 
 printf '\nmain job done: results in %s (pictures: box/contact_sheet.png, box/renders/;' "$out"
-printf ' network: model/neurons.png, model/roc.png)\n'
+printf ' network: model/neurons.svg, model/roc.svg)\n'

@@ -173,7 +173,7 @@ SectionReport run_detection(const BenchContext& context) {
 
   // Table 5 / Figure 14.
   std::vector<std::vector<std::string>> t5;
-  std::vector<std::vector<double>> chart14;
+  std::vector<std::vector<double>> chart14;  // [model][method]
   int hybrid_faster = 0, double_faster = 0, network_faster = 0;
   for (const std::string& model : models) {
     const std::vector<Timing>& t = results.at({model, table5_cloth});
@@ -191,7 +191,13 @@ SectionReport run_detection(const BenchContext& context) {
     double_faster += t[2].ms < t[1].ms ? 1 : 0;
     if (network) network_faster += t[3].ms < t[2].ms ? 1 : 0;
   }
-  write_bar_chart(context.out_dir / "detection_models.png", chart14);
+  BarChart figure14;
+  figure14.text = {"Figure 14: detection time per obstacle model, cloth " + std::string(1, table5_cloth),
+                   "obstacle model", "time per step (ms)", ""};
+  figure14.categories = models;
+  for (const Method& m : methods) figure14.series.push_back(m.name);
+  figure14.values = chart14;
+  write_bar_chart_svg((context.out_dir / "detection_models.svg").string(), figure14);
 
   // Table 7 / Figure 15.
   std::vector<std::vector<std::string>> t7;
@@ -199,7 +205,7 @@ SectionReport run_detection(const BenchContext& context) {
   std::vector<std::vector<double>> lines(methods.size());
   for (const char cloth : cloths) {
     const std::vector<Timing>& t = results.at({"fish", cloth});
-    xs.push_back(static_cast<double>(cloth_triangles.at(cloth)) / 1000.0);  // the chart font has no exponent
+    xs.push_back(static_cast<double>(cloth_triangles.at(cloth)) / 1000.0);
     for (std::size_t m = 0; m < methods.size(); ++m) {
       lines[m].push_back(t[m].ms);
       t7.push_back({std::string("cloth ") + cloth + " (" + std::to_string(cloth_triangles.at(cloth)) + " t)",
@@ -207,7 +213,12 @@ SectionReport run_detection(const BenchContext& context) {
                     fixed(kPaperTable7.at(cloth)[m] / kPaperTable7.at(cloth)[0], 3), fixed(t[m].ms / t[0].ms, 3)});
     }
   }
-  write_lines_chart(context.out_dir / "detection_cloths.png", xs, lines);
+  LineChart figure15;
+  figure15.text = {"Figure 15: detection time per cloth size, fish model", "cloth triangles (thousands)",
+                   "time per step (ms)", ""};
+  for (std::size_t m = 0; m < methods.size(); ++m) figure15.series.push_back({methods[m].name, xs, lines[m]});
+  figure15.markers = true;
+  write_line_chart_svg((context.out_dir / "detection_cloths.svg").string(), figure15);
   std::vector<std::vector<std::string>> growth;
   const char last = cloths.back();
   for (std::size_t m = 0; m < methods.size(); ++m) {
@@ -255,12 +266,7 @@ SectionReport run_detection(const BenchContext& context) {
           "save time here.";
   }
   md += "\n\n";
-  md += "![Detection time per model](detection_models.png)\n\n"
-        "*detection_models.png: ms per step; groups left to right: ";
-  for (std::size_t i = 0; i < models.size(); ++i) md += models[i] + (i + 1 < models.size() ? ", " : "");
-  std::vector<std::string> names;
-  for (const Method& m : methods) names.push_back(m.name);
-  md += "; " + legend(names) + ".*\n\n";
+  md += "![Detection time per model](detection_models.svg)\n\n";
   md += "### Table 7 / Figure 15: per cloth, fish model\n\n";
   md += markdown_table({"cloth", "method", "paper s", "ours ms", "paper / AABB", "ours / AABB"}, t7);
   md += "\nGrowth from cloth A to cloth " + std::string(1, last) + " (time " + std::string(1, last) + " / time A):\n\n";
@@ -275,14 +281,13 @@ SectionReport run_detection(const BenchContext& context) {
           fixed(box_growth, 2) + "x or more: " +
           (network_growth < 0.5 * box_growth ? "**reproduced**" : "**not reproduced**") + ".\n\n";
   }
-  md += "![Detection time per cloth](detection_cloths.png)\n\n*detection_cloths.png: ms per step against "
-        "thousands of cloth triangles (x); " + legend(names) + ".*\n\n";
+  md += "![Detection time per cloth](detection_cloths.svg)\n\n";
   md += "### Peer: FCL's AABB BVH, cloth-vs-obstacle broad phase on the same frames\n\n"
         "FCL 0.7 `BVHModel<AABB>`: refit to the step's end positions and `collide` with every contact (triangle pairs "
         "at the end pose). Ours: refit + traversal of the detector with self collision off (swept boxes over the "
         "step, VF and EE candidates), from its stage times. Not the same work item for item, but the same job.\n\n";
   md += markdown_table({"case", "FCL ms", "ours AABB ms", "ours double box ms", "FCL / ours AABB"}, fcl_rows);
-  return {md, {"detection.csv", "detection_fcl.csv", "detection_models.png", "detection_cloths.png"}};
+  return {md, {"detection.csv", "detection_fcl.csv", "detection_models.svg", "detection_cloths.svg"}};
 }
 
 const SectionRegistrar registrar{

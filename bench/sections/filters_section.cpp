@@ -126,7 +126,7 @@ SectionReport run_filters(const BenchContext& context) {
               "paper_seconds,paper_removal_rate");
   report.files.push_back("filters_tables_3_4.csv");
   std::vector<std::vector<std::string>> time_rows, removal_rows, safety_rows;
-  std::vector<std::vector<double>> time_groups, removal_groups;
+  BarChart time_groups, removal_groups;
   std::vector<double> network_vs_filters;
   long total_dropped = 0;
 
@@ -143,8 +143,10 @@ SectionReport run_filters(const BenchContext& context) {
     std::vector<std::string> time_row{paper.model, std::to_string(pairs.queries.size())};
     std::vector<std::string> removal_row{paper.model};
     std::vector<std::string> safety_row{paper.model, std::to_string(real)};
-    time_groups.emplace_back();
-    removal_groups.emplace_back();
+    time_groups.values.emplace_back();
+    removal_groups.values.emplace_back();
+    time_groups.categories.push_back(paper.model);
+    removal_groups.categories.push_back(paper.model);
     for (std::size_t k = 0; k < kMethodCount; ++k) {
       const bool in_paper = k < 4;
       csv.row({paper.scene, csv_text(kMethods[k]), std::to_string(pairs.queries.size()), number(r[k].ns_per_pair, 4),
@@ -154,8 +156,8 @@ SectionReport run_filters(const BenchContext& context) {
       removal_row.push_back(percent(r[k].removal) +
                             (in_paper ? " (paper " + fixed(paper.removal_percent[k], 2) + "%)" : ""));
       safety_row.push_back(std::to_string(r[k].real_dropped));
-      time_groups.back().push_back(r[k].ns_per_pair);
-      removal_groups.back().push_back(100 * r[k].removal);
+      time_groups.values.back().push_back(r[k].ns_per_pair);
+      removal_groups.values.back().push_back(100 * r[k].removal);
       total_dropped += k == 2 || k == 4 ? r[k].real_dropped : 0;
     }
     const double ours = r[3].ns_per_pair / r[2].ns_per_pair, culler = r[4].ns_per_pair / r[2].ns_per_pair;
@@ -166,11 +168,14 @@ SectionReport run_filters(const BenchContext& context) {
     removal_rows.push_back(removal_row);
     safety_rows.push_back(safety_row);
   }
-  write_bar_chart(context.out_dir / "filters_time.png", time_groups);
-  write_bar_chart(context.out_dir / "filters_removal.png", removal_groups, 0.0, 100.0);
-  report.files.insert(report.files.end(), {"filters_time.png", "filters_removal.png"});
-
   const std::vector<std::string> method_names(std::begin(kMethods), std::end(kMethods));
+  time_groups.series = removal_groups.series = method_names;
+  time_groups.text = {"Table 3: elimination time per candidate pair", "obstacle model", "time per pair (ns)", ""};
+  removal_groups.text = {"Table 4: candidate pairs removed", "obstacle model", "pairs removed (%)", ""};
+  removal_groups.y = {0.0, 100.0};
+  write_bar_chart_svg((context.out_dir / "filters_time.svg").string(), time_groups);
+  write_bar_chart_svg((context.out_dir / "filters_removal.svg").string(), removal_groups);
+  report.files.insert(report.files.end(), {"filters_time.svg", "filters_removal.svg"});
   std::string& md = report.markdown;
   md += "## Filters and network: Tables 3-4\n\n";
   md += std::string("Candidate pairs of ") + std::to_string(steps) + " simulated steps of cloth " + cloth +
@@ -189,8 +194,7 @@ SectionReport run_filters(const BenchContext& context) {
   for (const char* name : kMethods) safety_header.push_back(std::string(name) + ": dropped");
   md += "\nReal collisions among the removed pairs (must be 0 for the filters and the culler; the network alone is "
         "the paper's unchecked use):\n\n" + markdown_table(safety_header, safety_rows);
-  md += "\nCharts: `filters_time.png` (ns per pair) and `filters_removal.png` (removal %), one group per model, " +
-        legend(method_names) + ".\n\n";
+  md += "\n![Elimination time per pair](filters_time.svg)\n\n![Pairs removed](filters_removal.svg)\n\n";
 
   const double worst = *std::max_element(network_vs_filters.begin(), network_vs_filters.end());
   const double best = *std::min_element(network_vs_filters.begin(), network_vs_filters.end());

@@ -25,11 +25,11 @@ namespace fs = std::filesystem;
 constexpr double kPaperTp = 291, kPaperFn = 12, kPaperFp = 17, kPaperTn = 144;
 constexpr double kPaperAccuracy = 0.9375, kPaperAuc = 0.927, kPaperNeurons = 9;
 
-// The model's training data set, looked up as recorded in its card: as given, then from the source tree, then from
+// The model's training data set, looked up as recorded in its card: as given, then from the repository, then from
 // the model's grandparent folder (models/NAME -> the repository root). Empty when none exists (e.g. git-ignored).
-fs::path find_training_dataset(const learning::ModelCard& card, const fs::path& model_dir) {
+fs::path find_training_dataset(const learning::ModelCard& card, const fs::path& model_dir, const fs::path& repository) {
   const fs::path recorded = card.dataset;
-  for (const fs::path& candidate : {recorded, fs::path(CLOTHCD_BENCH_SOURCE_DIR) / recorded,
+  for (const fs::path& candidate : {recorded, repository / recorded,
                                     model_dir.parent_path().parent_path() / recorded})
     if (!recorded.empty() && fs::is_regular_file(candidate)) return candidate;
   return {};
@@ -85,7 +85,7 @@ SectionReport run_network(const BenchContext& context) {
   SectionReport report;
 
   context.progress("network: loading the testing split");
-  const fs::path dataset_path = find_training_dataset(card, model_dir);
+  const fs::path dataset_path = find_training_dataset(card, model_dir, context.repository);
   const learning::PairDataset dataset = dataset_path.empty() ? fresh_dataset(context)
                                                              : learning::read_pair_dataset_csv(dataset_path.string());
   const std::string source =
@@ -98,8 +98,8 @@ SectionReport run_network(const BenchContext& context) {
   learning::EvaluationSettings settings;
   settings.time_inference = !context.quick;
   const learning::EvaluationReport eval = learning::evaluate_pair_model(model_dir.string(), dataset, settings);
-  learning::write_roc_curve(eval.roc, (context.out_dir / "network_roc").string());
-  report.files = {"network_roc.csv", "network_roc.png"};
+  learning::write_roc_curve(eval.roc, eval.auc, (context.out_dir / "network_roc").string());
+  report.files = {"network_roc.csv", "network_roc.svg"};
 
   const learning::ConfusionMatrix& m = eval.filter_confusion;
   const std::vector<std::vector<std::string>> rows = {
@@ -120,8 +120,13 @@ SectionReport run_network(const BenchContext& context) {
   CsvFile neurons(context.out_dir / "network_neurons.csv", "neurons,training_error,selection_error");
   for (std::size_t i = 0; i < curve.neurons.size(); ++i)
     neurons.row({number(curve.neurons[i], 3), number(curve.training_error[i], 6), number(curve.selection_error[i], 6)});
-  write_lines_chart(context.out_dir / "network_neurons.png", curve.neurons, {curve.training_error, curve.selection_error});
-  report.files.insert(report.files.end(), {"network_neurons.csv", "network_neurons.png"});
+  LineChart chart;
+  chart.text = {"Figure 12: error per hidden-neuron count (" + model_dir.filename().string() + ")",
+                "hidden neurons", "normalized squared error", ""};
+  chart.series = {{"training", curve.neurons, curve.training_error}, {"selection", curve.neurons, curve.selection_error}};
+  chart.markers = true;
+  write_line_chart_svg((context.out_dir / "network_neurons.svg").string(), chart);
+  report.files.insert(report.files.end(), {"network_neurons.csv", "network_neurons.svg"});
 
   std::string& md = report.markdown;
   md += "## Network: Table 2, Figures 12-13\n\n";
@@ -132,8 +137,8 @@ SectionReport run_network(const BenchContext& context) {
         "predicted positive = probability >= " + number(eval.decision_threshold, 3) +
         ". The counts scale with the split's size: compare accuracy and AUC.\n\n";
   md += markdown_table({"", "paper", "clothcd", "ratio"}, rows);
-  md += "\nFigure 12: `network_neurons.png`, normalized squared error per hidden-neuron count (" +
-        legend({"training", "selection"}) + "); Figure 13: `network_roc.png` (ROC on the testing split).\n\n";
+  md += "\n![Figure 12: error per hidden-neuron count](network_neurons.svg)\n\n"
+        "![Figure 13: ROC on the testing split](network_roc.svg)\n\n";
   md += "Safety against the exact CCD label (not in the paper): " + std::to_string(eval.real_collisions) +
         " real collisions in the split; the operating point (drop below " + number(eval.drop_below, 4) + ") drops " +
         std::to_string(eval.real_collisions_dropped) + " of them, " +

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
@@ -29,7 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSourceDir = CLOTHCD_BENCH_SOURCE_DIR;
 constexpr long kMillion = 1000000;
 constexpr long kHugeCandidates = 30 * kMillion;  // the memory target's size of step
 constexpr double kMemoryTargetMb = 256;
@@ -105,7 +105,7 @@ void write_peer_scene(const MeshFrames& frames, const fs::path& path) {
 // The Python of the section's environment when it imports ipctk (creating the environment first in a full run), else
 // nothing and why in `status`.
 std::optional<fs::path> peer_python(const BenchContext& context, const fs::path& script, std::string& status) {
-  const fs::path venv = kSourceDir / ".cache" / "bench-venv", python = venv / "bin" / "python";
+  const fs::path venv = context.repository / ".cache" / "bench-venv", python = venv / "bin" / "python";
   const auto works = [&] {
     if (access(python.c_str(), X_OK) != 0) return false;
     const ChildRun run = run_child({python.string(), script.string(), "--version"}, 1);
@@ -116,7 +116,7 @@ std::optional<fs::path> peer_python(const BenchContext& context, const fs::path&
   if (!context.quick) {
     context.progress("creating the peer's Python environment in " + venv.string() + " (pip install ipctk==1.6.1)");
     const ChildRun setup =
-        run_child({"/usr/bin/env", "bash", (kSourceDir / "bench" / "peers" / "setup-ipctk.sh").string(),
+        run_child({"/usr/bin/env", "bash", (context.repository / "bench" / "peers" / "setup-ipctk.sh").string(),
                    venv.string()}, 1);
     if (setup.exit_code == 0 && works()) return python;
   }
@@ -195,7 +195,9 @@ SectionReport run_scale(const BenchContext& context) {
                                ? fs::read_symlink("/proc/self/exe").parent_path() / "clothcd"
                                : fs::absolute(context.clothcd_program);
   if (access(clothcd.c_str(), X_OK) != 0) throw std::runtime_error("cannot run " + clothcd.string());
-  const fs::path script = kSourceDir / "bench" / "peers" / "ipctk_candidates.py";
+  if (context.repository.empty())
+    throw std::runtime_error("scale: run clothcd bench inside the repository (its peer scripts are in bench/peers)");
+  const fs::path script = context.repository / "bench" / "peers" / "ipctk_candidates.py";
   const int repeats = context.quick ? 1 : 3;
   const bool two_cpus = have_cpus(2);
 
@@ -240,7 +242,9 @@ SectionReport run_scale(const BenchContext& context) {
               "same_collisions_all_runs,truth_pairs,truth_missed,ipctk_candidates,ipctk_1t_ms,ipctk_2t_ms,"
               "ipctk_1t_over_ours_1t");
   std::vector<std::vector<std::string>> rows;
-  std::vector<std::vector<double>> chart;
+  BarChart chart;
+  chart.text = {"Whole detection per candidate pair, per step", "step (scene)", "time per candidate pair (ns)", ""};
+  chart.series = {"ours, one thread", "ours, two threads", "ipctk LBVH, one thread", "ipctk LBVH, two threads"};
   for (const SceneResult& r : results) {
     const double whole = r.one.whole_ms(), per = 1e6 * whole / static_cast<double>(std::max(1L, r.one.candidates));
     const bool has_two = r.two.candidates > 0;
@@ -269,11 +273,13 @@ SectionReport run_scale(const BenchContext& context) {
                     r.peer_one ? ms(r.peer_one->ms) : peer_status, r.peer_two ? ms(r.peer_two->ms) : "-",
                     r.peer_one ? fixed(peer_ratio, 2) : "-"});
     const auto ns_per = [](double t, long n) { return 1e6 * t / static_cast<double>(std::max(1L, n)); };
-    chart.push_back({per, has_two ? ns_per(r.two.whole_ms(), r.one.candidates) : 0,
-                     r.peer_one ? ns_per(r.peer_one->ms, r.peer_one->candidates) : 0,
-                     r.peer_two ? ns_per(r.peer_two->ms, r.peer_one->candidates) : 0});
+    const double none = std::nan("");  // draws no bar
+    chart.categories.push_back(r.scene.name);
+    chart.values.push_back({per, has_two ? ns_per(r.two.whole_ms(), r.one.candidates) : none,
+                            r.peer_one ? ns_per(r.peer_one->ms, r.peer_one->candidates) : none,
+                            r.peer_two ? ns_per(r.peer_two->ms, r.peer_one->candidates) : none});
   }
-  write_bar_chart(context.out_dir / "scale_ns_per_candidate.png", chart);
+  write_bar_chart_svg((context.out_dir / "scale_ns_per_candidate.svg").string(), chart);
 
   // The issue's targets, one row per step they apply to.
   std::vector<std::vector<std::string>> targets;
@@ -350,13 +356,11 @@ SectionReport run_scale(const BenchContext& context) {
                        rows);
   std::string steps;
   for (const SceneResult& r : results) steps += (steps.empty() ? "" : ", ") + r.scene.name;
-  md += "\nChart [scale_ns_per_candidate.png](scale_ns_per_candidate.png): ns per candidate pair, per step (left to "
-        "right: " + steps + "): " +
-        legend({"ours, one thread", "ours, two threads", "ipctk LBVH, one thread", "ipctk LBVH, two threads"}) +
-        " (ipctk by its own candidate count).\n\n";
+  md += "\n![ns per candidate pair, per step](scale_ns_per_candidate.svg)\n\n*Steps left to right: " + steps +
+        "; ipctk per its own candidate count.*\n\n";
   md += "Targets of the scaling issue:\n\n";
   md += markdown_table({"measure", "ours", "peer", "ratio", "target", "verdict"}, targets);
-  return {md, {"scale.csv", "scale_ns_per_candidate.png"}};
+  return {md, {"scale.csv", "scale_ns_per_candidate.svg"}};
 }
 
 const SectionRegistrar registrar{

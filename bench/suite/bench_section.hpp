@@ -14,7 +14,8 @@ namespace clothcd::bench {
 /// Everything a section may read; sections take no other input.
 struct BenchContext {
   std::filesystem::path out_dir;                     ///< Where the section writes its CSV and PNG files.
-  std::filesystem::path obstacle_model_dir;          ///< The obstacle model cache (`clothcd meshes`, .cache/models).
+  std::filesystem::path repository;                  ///< The checkout the run is made from (empty outside one).
+  std::filesystem::path obstacle_model_dir;          ///< The obstacle model cache (`clothcd meshes`, default_model_dir()).
   std::filesystem::path network_model_dir;           ///< The pair network to benchmark (models/default by default).
   std::optional<std::filesystem::path> ccd_queries;  ///< The public CCD benchmark's query folder, when present.
   /// The shared real simulation steps (scalable-ccd-sample: one folder per scene with t0.ply, t1.ply, truth.json),

@@ -8,13 +8,22 @@
 #include <stdexcept>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "child_process.hpp"
-#include "learning/json_lite.hpp"
 
 namespace clothcd::bench {
 namespace {
 
-namespace json = learning::json;
+using Json = nlohmann::json;
+
+Json parse(const std::string& text, const std::string& context) {
+  try {
+    return Json::parse(text);
+  } catch (const Json::parse_error& error) {
+    throw std::runtime_error(context + ": malformed JSON: " + error.what());
+  }
+}
 
 std::string read_text(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
@@ -24,16 +33,17 @@ std::string read_text(const std::filesystem::path& path) {
   return text.str();
 }
 
-const json::Value& member(const json::Value& object, const std::string& key, const std::string& context) {
-  const json::Value* value = object.find(key);
-  if (value == nullptr) throw std::runtime_error(context + ": no \"" + key + "\"");
+const Json& member(const Json& object, const std::string& key, const std::string& context) {
+  const auto value = object.find(key);
+  if (value == object.end()) throw std::runtime_error(context + ": no \"" + key + "\"");
   return *value;
 }
 
 // The integers of a JSON array nested to any depth, in order ([[1, 2], [3, 4]] -> 1 2 3 4).
-void integers(const json::Value& value, std::vector<int>& out) {
-  if (value.kind == json::Value::Kind::Number) out.push_back(static_cast<int>(value.number));
-  for (const json::Value& item : value.array) integers(item, out);
+void integers(const Json& value, std::vector<int>& out) {
+  if (value.is_number()) out.push_back(value.get<int>());
+  if (value.is_array())
+    for (const Json& item : value) integers(item, out);
 }
 
 // The order-free key of a vertex-face pair {vertex, face} (2 numbers) or an edge-edge pair (4 numbers).
@@ -69,14 +79,13 @@ struct Entry {
   double toi = 0;
 };
 
-std::vector<Entry> entries(const json::Value& root, const std::string& list, const std::string& context) {
+std::vector<Entry> entries(const Json& root, const std::string& list, const std::string& context) {
   std::vector<Entry> out;
-  for (const json::Value& item : member(root, list, context).array) {
+  for (const Json& item : member(root, list, context)) {
     std::vector<int> n;
     integers(member(item, "pair", context), n);
-    const json::Value* conservative = item.find("conservative");
-    out.push_back({collision_key(n, context), conservative != nullptr && conservative->boolean,
-                   member(item, "toi", context).number});
+    out.push_back({collision_key(n, context), item.value("conservative", false),
+                   member(item, "toi", context).get<double>()});
   }
   return out;
 }
@@ -91,17 +100,17 @@ DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem
     throw std::runtime_error("clothcd detect " + t0.string() + " failed (exit " + std::to_string(child.exit_code) +
                              "): " + child.output);
   const std::string context = json_out.string();
-  const json::Value root = json::parse(read_text(json_out), context);
-  const json::Value& counts = member(root, "counts", context);
-  const json::Value& times = member(root, "times_ms", context);
+  const Json root = parse(read_text(json_out), context);
+  const Json& counts = member(root, "counts", context);
+  const Json& times = member(root, "times_ms", context);
   DetectRun run;
-  run.candidates = static_cast<long>(member(counts, "candidates_vertex_face", context).number +
-                                     member(counts, "candidates_edge_edge", context).number);
-  run.culled = static_cast<long>(member(counts, "culled", context).number);
-  run.refit_ms = member(times, "refit", context).number;
-  run.traversal_ms = member(times, "traversal", context).number;
-  run.culling_ms = member(times, "filters", context).number;
-  run.exact_ms = member(times, "exact", context).number;
+  run.candidates = member(counts, "candidates_vertex_face", context).get<long>() +
+                   member(counts, "candidates_edge_edge", context).get<long>();
+  run.culled = member(counts, "culled", context).get<long>();
+  run.refit_ms = member(times, "refit", context).get<double>();
+  run.traversal_ms = member(times, "traversal", context).get<double>();
+  run.culling_ms = member(times, "filters", context).get<double>();
+  run.exact_ms = member(times, "exact", context).get<double>();
   run.peak_rss_mb = child.peak_rss_mb;
   std::vector<Entry> all = entries(root, "vertex_face", context);
   for (const Entry& e : entries(root, "edge_edge", context)) all.push_back(e);
@@ -121,10 +130,10 @@ DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem
 
 TruthCheck check_truth(const std::filesystem::path& truth_json, const std::vector<CollisionKey>& found) {
   const std::string context = truth_json.string();
-  const json::Value root = json::parse(read_text(truth_json), context);
+  const Json root = parse(read_text(truth_json), context);
   TruthCheck check;
   for (const char* list : {"vf", "ee"}) {
-    for (const json::Value& pair : member(root, list, context).array) {
+    for (const Json& pair : member(root, list, context)) {
       std::vector<int> n;
       integers(pair, n);
       ++check.listed;

@@ -1,7 +1,9 @@
 // clothcd-bench: runs the benchmark sections (the paper's tables and figures, with peer libraries in the same run) and
 // writes their CSV and PNG files plus one Markdown report into the output folder.
-// Usage: clothcd-bench all|NAME --out DIR [--quick] [--models DIR] [--network DIR] [--ccd-queries DIR]
+// Usage: clothcd-bench all|NAME --out DIR [--quick] [--quiet] [--cache DIR] [--network DIR] [--ccd-queries DIR]
 //        [--scalable-ccd DIR] [--clothcd PROGRAM]
+// Data paths are found at run time: the model cache as every clothcd command finds it, the network and the shared
+// data from the repository the current folder is in.
 #include <CLI/CLI.hpp>
 
 #include <cctype>
@@ -17,6 +19,7 @@
 #include "bench_section.hpp"
 #include "bench_util.hpp"
 #include "clothcd/detection/network_culling.hpp"
+#include "clothcd/mesh/model_catalog.hpp"
 #include "machine_info.hpp"
 
 namespace fs = std::filesystem;
@@ -24,16 +27,23 @@ using namespace clothcd::bench;
 
 namespace {
 
-const fs::path kSourceDir = CLOTHCD_BENCH_SOURCE_DIR;
-
-// $CLOTHCD_MODEL_DIR when set, else the source tree's .cache/models (where `clothcd meshes` keeps the models).
-fs::path default_models() {
-  if (const char* dir = std::getenv("CLOTHCD_MODEL_DIR"); dir && *dir) return dir;
-  return kSourceDir / ".cache" / "models";
+// The clothcd repository the run is made from, found at run time: the current folder or the nearest folder above it
+// that holds bench/README.md and models/default; empty outside a checkout.
+fs::path find_repository() {
+  std::error_code error;
+  for (fs::path dir = fs::current_path(error); !error && !dir.empty(); dir = dir.parent_path()) {
+    if (fs::is_regular_file(dir / "bench" / "README.md", error) && fs::is_directory(dir / "models" / "default", error))
+      return dir;
+    if (dir == dir.root_path()) break;
+  }
+  return {};
 }
 
-// The committed pair network, or empty when neither the source nor the installed copy exists.
-fs::path default_network() {
+// The repository's models/default, else the library's default pair network; empty when neither exists.
+fs::path default_network(const fs::path& repository) {
+  std::error_code error;
+  if (!repository.empty() && fs::is_directory(repository / "models" / "default", error))
+    return repository / "models" / "default";
   try {
     return clothcd::default_network_model_dir();
   } catch (const std::exception&) {
@@ -41,17 +51,13 @@ fs::path default_network() {
   }
 }
 
-// The public CCD benchmark's sample queries beside the checkout (../shared/data/ccd-sample-queries), when present.
-std::optional<fs::path> default_ccd_queries() {
-  const fs::path dir = kSourceDir.parent_path() / "shared" / "data" / "ccd-sample-queries";
-  if (fs::is_directory(dir)) return dir;
-  return std::nullopt;
-}
-
-// The shared real simulation steps beside the checkout (../shared/data/scalable-ccd-sample), when present.
-std::optional<fs::path> default_scalable_ccd() {
-  const fs::path dir = kSourceDir.parent_path() / "shared" / "data" / "scalable-ccd-sample";
-  if (fs::is_directory(dir)) return dir;
+// A folder of the shared data beside the checkout (../shared/data/NAME: the public CCD benchmark's sample queries, the
+// real simulation steps), when present.
+std::optional<fs::path> default_shared_data(const fs::path& repository, const std::string& name) {
+  if (repository.empty()) return std::nullopt;
+  const fs::path dir = repository.parent_path() / "shared" / "data" / name;
+  std::error_code error;
+  if (fs::is_directory(dir, error)) return dir;
   return std::nullopt;
 }
 
@@ -85,21 +91,27 @@ int main(int argc, char** argv) {
   CLI::App app{"clothcd-bench: the paper's experiments beside the paper's figures and peer libraries", "clothcd-bench"};
   std::string which;
   BenchContext context;
-  context.obstacle_model_dir = default_models();
-  context.network_model_dir = default_network();
-  context.ccd_queries = default_ccd_queries();
-  context.scalable_ccd = default_scalable_ccd();
+  context.repository = find_repository();
+  context.obstacle_model_dir = clothcd::default_model_dir();
+  context.network_model_dir = default_network(context.repository);
+  context.ccd_queries = default_shared_data(context.repository, "ccd-sample-queries");
+  context.scalable_ccd = default_shared_data(context.repository, "scalable-ccd-sample");
   std::string ccd_queries, scalable_ccd;
+  bool quiet = false;
   app.add_option("SECTION", which, "all, or one section: " + section_names(sections).substr(5))->required();
   app.add_option("--out", context.out_dir, "Folder for report.md and the CSV and PNG files (created)")->required();
+  app.add_flag("--quiet,-q", quiet, "No progress lines on stderr");
   app.add_flag("--quick", context.quick, "CI-sized run: fewer models, steps and repetitions (under 2 minutes)");
-  app.add_option("--models", context.obstacle_model_dir, "Obstacle model cache (`clothcd meshes`)")
+  app.add_option("--cache", context.obstacle_model_dir, "Obstacle model cache (`clothcd meshes`; default "
+                 "$CLOTHCD_CACHE, else $XDG_CACHE_HOME/clothcd or ~/.cache/clothcd)")
       ->capture_default_str();
-  app.add_option("--network", context.network_model_dir, "Pair network model folder")->capture_default_str();
+  app.add_option("--models", context.obstacle_model_dir, "old spelling of --cache")->group("");
+  app.add_option("--network", context.network_model_dir, "Pair network model folder (default: models/default of "
+                 "the repository the current folder is in)")->capture_default_str();
   app.add_option("--ccd-queries", ccd_queries, "The public CCD benchmark's query folder (default: "
-                 "../shared/data/ccd-sample-queries beside the source tree, when present)");
+                 "../shared/data/ccd-sample-queries beside the repository the current folder is in, when present)");
   app.add_option("--scalable-ccd", scalable_ccd, "The shared real simulation steps for the scale section (default: "
-                 "../shared/data/scalable-ccd-sample beside the source tree, when present)");
+                 "../shared/data/scalable-ccd-sample beside the repository the current folder is in, when present)");
   app.add_option("--clothcd", context.clothcd_program, "The clothcd program whose `detect` the scale section measures "
                  "(default: the one beside clothcd-bench)")->check(CLI::ExistingFile);
   std::string footer = "Sections:\n";
@@ -147,13 +159,14 @@ int main(int argc, char** argv) {
   const auto elapsed_s = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  const std::string commit = git_commit(kSourceDir);  // before the sections write their results into the tree
+  const std::string commit = context.repository.empty() ? "unknown (not run inside a checkout)"
+                                                        : git_commit(context.repository);  // before the sections write their results into the tree
   std::vector<std::string> parts;
   bool failed = false;
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const Section& section = chosen[i];
     context.progress = [&](const std::string& step) {
-      std::cerr << "[" << section.name << "] " << step << "  (" << fixed(elapsed_s(), 1) << " s)\n";
+      if (!quiet) std::cerr << "[" << section.name << "] " << step << "  (" << fixed(elapsed_s(), 1) << " s)\n";
     };
     context.progress("section " + std::to_string(i + 1) + "/" + std::to_string(chosen.size()) + ": " +
                      section.summary);

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "clothcd/learning/pair_classifier.hpp"
-#include "learning/line_chart.hpp"
+#include "render/svg_chart.hpp"
 #include "learning/opennn_backend.hpp"
 
 namespace clothcd::learning {
@@ -120,25 +120,28 @@ EvaluationReport evaluate_pair_model(const std::string& model, const PairDataset
   return report;
 }
 
-void write_roc_curve(const std::vector<RocPoint>& roc, const std::string& out_prefix) {
+void write_roc_curve(const std::vector<RocPoint>& roc, double auc, const std::string& out_prefix) {
   const std::string csv = out_prefix + ".csv";
   std::ofstream file(csv);
   if (!file) throw std::runtime_error(csv + ": cannot open for writing");
   file.precision(17);
   file << "threshold,false_positive_rate,true_positive_rate\n";
-  ChartSeries series{{}, {}, {31, 119, 180}};
+  render::LineSeries series{"ROC", {}, {}};
   for (const RocPoint& p : roc) {
     file << p.threshold << ',' << p.false_positive_rate << ',' << p.true_positive_rate << '\n';
     series.x.push_back(p.false_positive_rate);
     series.y.push_back(p.true_positive_rate);
   }
   if (!file.flush()) throw std::runtime_error(csv + ": write failed");
-  ChartSettings chart;
-  chart.width = chart.height = 600;
-  chart.x_min = chart.y_min = 0.0;
-  chart.x_max = chart.y_max = 1.0;
+  char note[32];
+  std::snprintf(note, sizeof note, "AUC %.5f", auc);
+  render::LineChart chart;
+  chart.text = {"ROC of the pair network against the filter label", "false positive rate",
+                "true positive rate", note};
+  chart.series = {series};
+  chart.x = chart.y = {0.0, 1.0};
   chart.diagonal = true;
-  write_line_chart_png(out_prefix + ".png", {series}, chart);
+  render::write_line_chart_svg(out_prefix + ".svg", chart);
 }
 
 }  // namespace clothcd::learning

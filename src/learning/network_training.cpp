@@ -15,7 +15,7 @@
 #include <stdexcept>
 
 #include "clothcd/learning/pair_classifier.hpp"
-#include "learning/line_chart.hpp"
+#include "render/svg_chart.hpp"
 #include "learning/opennn_backend.hpp"
 
 namespace clothcd::learning {
@@ -109,7 +109,7 @@ void write_curve(const std::vector<NeuronCountResult>& curve, const std::string&
   std::ofstream file(csv);
   file.precision(17);
   file << "neurons,training_error,selection_error,best_trial\n";
-  ChartSeries training{{}, {}, {31, 119, 180}}, selection{{}, {}, {255, 127, 14}};
+  render::LineSeries training{"training", {}, {}}, selection{"selection", {}, {}};
   for (const NeuronCountResult& r : curve) {
     file << r.neurons << ',' << r.training_error << ',' << r.selection_error << ',' << r.best_trial << '\n';
     training.x.push_back(static_cast<double>(r.neurons));
@@ -118,11 +118,12 @@ void write_curve(const std::vector<NeuronCountResult>& curve, const std::string&
     selection.y.push_back(r.selection_error);
   }
   if (!file.flush()) throw std::runtime_error(csv + ": write failed");
-  ChartSettings chart;
-  chart.y_min = 0.0;
-  chart.y_max = std::max(1e-3, std::max(*std::max_element(training.y.begin(), training.y.end()),
-                                        *std::max_element(selection.y.begin(), selection.y.end())) * 1.05);
-  write_line_chart_png(out_dir + "/neurons.png", {training, selection}, chart);
+  render::LineChart chart;
+  chart.text = {"Error per hidden-neuron count (incremental order selection)", "hidden neurons",
+                "normalized squared error", ""};
+  chart.series = {training, selection};
+  chart.markers = true;  // y from the data: the curve is nearly flat, an axis from 0 would hide it
+  render::write_line_chart_svg(out_dir + "/neurons.svg", chart);
 }
 
 }  // namespace

@@ -105,8 +105,16 @@ const std::vector<ModelSource>& model_catalog() {
 }
 
 fs::path default_model_dir() {
-  if (const char* dir = std::getenv("CLOTHCD_MODEL_DIR"); dir != nullptr && *dir != '\0') return dir;
-  return fs::current_path() / ".cache" / "models";
+  const auto variable = [](const char* name) -> std::string {
+    const char* value = std::getenv(name);
+    return value != nullptr ? value : "";
+  };
+  if (const std::string dir = variable("CLOTHCD_CACHE"); !dir.empty()) return dir;
+  if (const std::string dir = variable("CLOTHCD_MODEL_DIR"); !dir.empty()) return dir;  // its old name
+  // The XDG base directory rule: a relative $XDG_CACHE_HOME is invalid and ignored.
+  if (const std::string xdg = variable("XDG_CACHE_HOME"); !xdg.empty() && xdg[0] == '/') return fs::path(xdg) / "clothcd";
+  if (const std::string home = variable("HOME"); !home.empty()) return fs::path(home) / ".cache" / "clothcd";
+  return fs::current_path() / ".cache" / "clothcd";
 }
 
 fs::path fetch_model(const std::string& name, const fs::path& cache_dir) {

@@ -45,7 +45,57 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
-Image contact_sheet(const std::vector<Image>& images, int columns, int gap) {
+namespace {
+
+// Rows of 3 pixels, top to bottom (bit 4: left column), for "0123456789" and "STEP ".
+constexpr unsigned char kDigitGlyphs[10][5] = {{7, 5, 5, 5, 7}, {2, 6, 2, 2, 7}, {7, 1, 7, 4, 7}, {7, 1, 7, 1, 7},
+                                               {5, 5, 7, 1, 1}, {7, 4, 7, 1, 7}, {7, 4, 7, 5, 7}, {7, 1, 1, 1, 1},
+                                               {7, 5, 7, 5, 7}, {7, 5, 7, 1, 7}};
+
+const unsigned char* glyph(char c) {
+  static constexpr unsigned char kS[5] = {3, 4, 2, 1, 6}, kT[5] = {7, 2, 2, 2, 2}, kE[5] = {7, 4, 6, 4, 7},
+                                 kP[5] = {6, 5, 6, 4, 4}, kSpace[5] = {0, 0, 0, 0, 0};
+  if (c >= '0' && c <= '9') return kDigitGlyphs[c - '0'];
+  switch (c) {
+    case 'S':
+      return kS;
+    case 'T':
+      return kT;
+    case 'E':
+      return kE;
+    case 'P':
+      return kP;
+    case ' ':
+      return kSpace;
+    default:
+      throw std::invalid_argument(std::string("contact sheet: no glyph for '") + c + "'");
+  }
+}
+
+// Black text on a white box at (x, y), `scale` pixels per font pixel.
+void draw_label(Image& image, int x, int y, const std::string& text, int scale) {
+  const int width = static_cast<int>(text.size()) * 4 * scale + scale, height = 7 * scale;
+  const auto paint = [&](int px, int py, unsigned char value) {
+    if (px < 0 || py < 0 || px >= image.width || py >= image.height) return;
+    unsigned char* p = &image.rgb[(static_cast<size_t>(py) * image.width + px) * 3];
+    p[0] = p[1] = p[2] = value;
+  };
+  for (int py = 0; py < height; ++py)
+    for (int px = 0; px < width; ++px) paint(x + px, y + py, 255);
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const unsigned char* rows = glyph(text[k]);
+    for (int row = 0; row < 5; ++row)
+      for (int col = 0; col < 3; ++col)
+        if (rows[row] & (4 >> col))
+          for (int a = 0; a < scale; ++a)
+            for (int b = 0; b < scale; ++b)
+              paint(x + scale + (static_cast<int>(k) * 4 + col) * scale + a, y + scale + row * scale + b, 0);
+  }
+}
+
+}  // namespace
+
+Image contact_sheet(const std::vector<Image>& images, int columns, int gap, const std::vector<std::string>& labels) {
   if (images.empty()) throw std::invalid_argument("contact sheet: no image");
   if (columns < 1) throw std::invalid_argument("contact sheet: columns must be >= 1");
   int cell_w = 0, cell_h = 0;
@@ -63,6 +113,7 @@ Image contact_sheet(const std::vector<Image>& images, int columns, int gap) {
       std::copy_n(&im.rgb[static_cast<size_t>(y) * im.width * 3], static_cast<size_t>(im.width) * 3,
                   &sheet.rgb[(static_cast<size_t>(y0 + y) * sheet.width + x0) * 3]);
     }
+    if (k < static_cast<int>(labels.size())) draw_label(sheet, x0 + 4, y0 + 4, labels[k], 2);
   }
   return sheet;
 }

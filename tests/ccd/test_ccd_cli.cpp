@@ -1,5 +1,6 @@
 // `clothcd ccd` on small generated query files: summary counts, JSON, per-query output and one-line errors.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -60,15 +61,18 @@ TEST_CASE("clothcd ccd summarises a generated query folder", "[ccd][cli]") {
 
   const auto json = run_cli("ccd '" + (dir / "vertex-face/a.csv").string() + "' --json --thickness 0.01");
   REQUIRE(json.exit_code == 0);
-  CHECK_THAT(json.output,
-             Catch::StartsWith("{") && Catch::Contains("\"queries\": 2") && Catch::Contains("\"false_negatives\": 0"));
+  const nlohmann::json summary = nlohmann::json::parse(json.output);
+  CHECK(summary["schema"] == 1);
+  CHECK(summary["queries"] == 2);
+  CHECK(summary["false_negatives"] == 0);
+  CHECK(summary["filter"] == "combined");
 
   // A path with a quote and a backslash stays valid JSON.
   std::filesystem::create_directories(dir / "we\"ird\\name/vertex-face");
   write_file(dir / "we\"ird\\name/vertex-face/a.csv", vertex_face_query("1,2", 1));
   const auto escaped = run_cli("ccd '" + (dir / "we\"ird\\name").string() + "' --json");
   REQUIRE(escaped.exit_code == 0);
-  CHECK_THAT(escaped.output, Catch::Contains("we\\\"ird\\\\name\", \"filter\""));
+  CHECK(nlohmann::json::parse(escaped.output)["path"] == (dir / "we\"ird\\name").string());
 }
 
 TEST_CASE("clothcd ccd decides queries with non-double coordinates on their exact values", "[ccd][cli]") {
@@ -125,6 +129,9 @@ TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cl
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type xx").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --filter bogus").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness -1").exit_code == 1);
+  const auto exact_thick = run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness 0.1 --exact");
+  CHECK(exact_thick.exit_code == 1);
+  CHECK_THAT(exact_thick.output, Catch::Contains("--exact decides only") && Catch::Contains("thickness"));
   CHECK(run_cli("ccd '" + (dir / "missing").string() + "'").exit_code == 1);
 }
 

@@ -19,14 +19,14 @@ TEST_CASE("clothcd train and evaluate run end to end", "[learning][cli]") {
                              model + "\"");
   REQUIRE(train.exit_code == 0);
   CHECK(train.output.find("chosen hidden neurons") != std::string::npos);
-  for (const char* file : {"network.xml", "card.json", "neurons.csv", "neurons.png"}) CHECK(fs::exists(fs::path(model) / file));
+  for (const char* file : {"network.xml", "card.json", "neurons.csv", "neurons.svg"}) CHECK(fs::exists(fs::path(model) / file));
   const auto evaluate = run_cli("evaluate \"" + model + "\" \"" + data + "\"");
   REQUIRE(evaluate.exit_code == 0);
   const std::string& report = evaluate.output;
   CHECK(report.find("accuracy") != std::string::npos);
   CHECK(report.find("real collisions") != std::string::npos);
   CHECK(fs::exists(fs::path(model) / "roc.csv"));
-  CHECK(fs::exists(fs::path(model) / "roc.png"));
+  CHECK(fs::exists(fs::path(model) / "roc.svg"));
   CHECK(report.find("AUC - (undefined") == std::string::npos);
 
   // A testing split of one class: no AUC and no sensitivity to report (they were printed as 0 and 1).

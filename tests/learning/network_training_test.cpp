@@ -19,7 +19,7 @@ using clothcd::test::read_file;
 
 TEST_CASE("training writes the model, card and neuron curve and learns the filter label", "[learning][training]") {
   const test::TrainedModel& model = test::trained_model();
-  for (const char* file : {"network.xml", "card.json", "neurons.csv", "neurons.png"})
+  for (const char* file : {"network.xml", "card.json", "neurons.csv", "neurons.svg"})
     CHECK(fs::file_size(model.directory + "/" + file) > 0);
   const TrainingReport& report = model.report;
   REQUIRE(report.curve.size() == 3);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <cstdlib>
 #include <cstring>
 #include <set>
@@ -11,7 +12,6 @@
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
-#include "learning/json_lite.hpp"
 #include "support/test_support.hpp"
 
 namespace {
@@ -100,8 +100,8 @@ TEST_CASE("every ground-truth pair of the shared simulation steps is found", "[m
     }
     INFO(scene);
     const MeshFrames frames = clothcd::load_mesh_frames(root / scene / "t0.ply", root / scene / "t1.ply");
-    const auto truth = clothcd::learning::json::parse(clothcd::test::read_file(root / scene / "truth.json"), scene);
-    REQUIRE(truth.find("vertices")->number == frames.start.vertex_count());
+    const auto truth = nlohmann::json::parse(clothcd::test::read_file(root / scene / "truth.json"));
+    REQUIRE(truth["vertices"].get<double>() == frames.start.vertex_count());
     // The frames are binary little-endian PLY whose vertex element (x, y, z as double) comes first.
     for (const auto& [name, positions] : {std::make_pair("t0.ply", &frames.start.vertices), std::make_pair("t1.ply", &frames.end)}) {
       const std::string bytes = clothcd::test::read_file(root / scene / name);
@@ -123,20 +123,20 @@ TEST_CASE("every ground-truth pair of the shared simulation steps is found", "[m
       found.insert(key);
     }
     int missed = 0;
-    for (const auto& pair : truth.find("vf")->array) {
-      const int vertex = static_cast<int>(pair.array[0].number), face = static_cast<int>(pair.array[1].number);
+    for (const auto& pair : truth["vf"]) {
+      const int vertex = pair[0].get<int>(), face = pair[1].get<int>();
       std::array<int, 4> key{vertex, frames.start.faces(face, 0), frames.start.faces(face, 1), frames.start.faces(face, 2)};
       std::sort(key.begin() + 1, key.end());
       missed += found.count(key) == 0;
     }
-    for (const auto& pair : truth.find("ee")->array) {
+    for (const auto& pair : truth["ee"]) {
       std::array<int, 4> key{};
-      for (int k = 0; k < 4; ++k) key[k] = static_cast<int>(pair.array[k / 2].array[k % 2].number);
+      for (int k = 0; k < 4; ++k) key[k] = pair[k / 2][k % 2].get<int>();
       if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
       key[0] = -1 - key[0];
       missed += found.count(key) == 0;
     }
     CHECK(missed == 0);
-    CHECK(truth.find("vf")->array.size() + truth.find("ee")->array.size() > 100);
+    CHECK(truth["vf"].size() + truth["ee"].size() > 100);
   }
 }

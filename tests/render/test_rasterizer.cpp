@@ -85,6 +85,19 @@ TEST_CASE("a contact sheet lays images on a grid; bad input throws", "[render]")
   CHECK(sheet.rgb[0] == 255);                                  // gap
   CHECK(sheet.rgb[(4 * sheet.width + 4) * 3] == 0);            // first image
   CHECK_THROWS(contact_sheet({}, 2));
+  // Labels: black pixels of the font on a white box in the image's corner (the images are black), in the
+  // top-left of each cell; a character the font lacks is an error.
+  const Image labelled = contact_sheet(images, 2, 4, {"STEP 0", "STEP 12"});
+  const auto white_at = [&](int x, int y) { return labelled.rgb[(static_cast<size_t>(y) * labelled.width + x) * 3] == 255; };
+  // Image 0 starts at (4, 4), its label box at (8, 8); the glyphs at (10, 10), 2 pixels per font pixel. The top row
+  // of 'S' is .XX: white at x 10-11, black at 12-15.
+  CHECK(white_at(8, 8));
+  CHECK(white_at(10, 10));
+  CHECK_FALSE(white_at(12, 10));
+  CHECK_FALSE(white_at(15, 11));
+  CHECK(white_at(4 + 30 + 4 + 4, 8));  // image 1's label box
+  CHECK_FALSE(white_at(9, 22));        // below the 14-pixel label box: the black image
+  CHECK_THROWS(contact_sheet(images, 2, 4, {"step"}));
   CHECK_THROWS(Image(0, 10));
   CHECK_THROWS(write_png(Image(), std::filesystem::temp_directory_path() / "clothcd-empty.png"));
   CHECK_THROWS(write_png(Image(4, 4), "/nonexistent-dir/x.png"));

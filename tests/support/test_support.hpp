@@ -54,8 +54,9 @@ struct CliRun {
 };
 
 /// Runs `clothcd <arguments>` (arguments are passed to the shell as written) and captures its output.
-inline CliRun run_cli(const std::string& arguments) {
-  const std::string command = std::string("'") + CLOTHCD_CLI_PATH + "' " + arguments + " 2>&1";
+/// With `stdout_only`, stderr is discarded instead.
+inline CliRun run_cli(const std::string& arguments, bool stdout_only = false) {
+  const std::string command = std::string("'") + CLOTHCD_CLI_PATH + "' " + arguments + (stdout_only ? " 2>/dev/null" : " 2>&1");
   CliRun run;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return run;

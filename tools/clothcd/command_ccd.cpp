@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -17,6 +18,7 @@
 #include "clothcd/ccd/query_file.hpp"
 #include "clothcd/detection/network_culling.hpp"
 #include "commands.hpp"
+#include "shared_options.hpp"
 
 namespace clothcd::cli {
 
@@ -28,8 +30,8 @@ constexpr std::size_t kChunkQueries = 4096;
 struct CcdCommandOptions {
   std::string path;
   std::string type;
-  std::string filter = "none";
-  std::string model;
+  std::string filter = "combined";
+  std::string network;
   double thickness = 0.0;
   bool exact = false;
   bool json = false;
@@ -68,24 +70,30 @@ const char* state_name(ccd::CcdState state) {
 
 void print_summary(const CcdCommandOptions& options, const Summary& s) {
   if (options.json) {
-    std::cout << "{\"path\": " << json_string(options.path) << ", \"filter\": \"" << options.filter
-              << "\", \"thickness\": " << options.thickness << ", \"exact\": " << (options.exact ? "true" : "false")
-              << ", \"queries\": " << s.queries
-              << ", \"colliding\": " << s.colliding << ", \"conservative\": " << s.conservative
-              << ", \"with_ground_truth\": " << s.with_truth << ", \"truth_colliding\": " << s.truth_colliding
-              << ", \"false_positives\": " << s.false_positives << ", \"false_negatives\": " << s.false_negatives
-              << ", \"inexact_coordinates\": " << s.inexact_coordinates << ", \"culled\": " << s.culled_selected
-              << ", \"culled_nonpenetration\": " << s.culled_nonpenetration
-              << ", \"culled_projection\": " << s.culled_projection << ", \"culled_combined\": " << s.culled_combined
-              << ", \"ns_per_query\": " << std::fixed << std::setprecision(1) << s.ns_per_query;
-    if (s.network)
-      std::cout << ", \"network_dropped\": " << s.network_stats.dropped
-                << ", \"network_overruled\": " << s.network_stats.overruled
-                << ", \"network_checked\": " << s.network_stats.checked
-                << ", \"network_kept\": " << s.network_stats.kept
-                << ", \"network_ms\": " << s.network_stats.network_ms
-                << ", \"network_filters_ms\": " << s.network_stats.filters_ms;
-    std::cout << "}\n";
+    Json report = json_report("ccd");
+    report["path"] = options.path;
+    report["filter"] = options.filter;
+    report["thickness"] = options.thickness;
+    report["exact"] = options.exact;
+    report["queries"] = s.queries;
+    report["colliding"] = s.colliding;
+    report["conservative"] = s.conservative;
+    report["with_ground_truth"] = s.with_truth;
+    report["truth_colliding"] = s.truth_colliding;
+    report["false_positives"] = s.false_positives;
+    report["false_negatives"] = s.false_negatives;
+    report["inexact_coordinates"] = s.inexact_coordinates;
+    report["culled"] = s.culled_selected;
+    report["culled_nonpenetration"] = s.culled_nonpenetration;
+    report["culled_projection"] = s.culled_projection;
+    report["culled_combined"] = s.culled_combined;
+    report["ns_per_query"] = std::round(s.ns_per_query * 10.0) / 10.0;
+    if (s.network) {
+      const NetworkCullingStats& n = s.network_stats;
+      report["network"] = {{"dropped", n.dropped}, {"overruled", n.overruled}, {"checked", n.checked},
+                           {"kept", n.kept},       {"network_ms", n.network_ms}, {"filters_ms", n.filters_ms}};
+    }
+    print_json(report);
     return;
   }
   const auto percent = [&](std::size_t n) { return s.queries ? 100.0 * static_cast<double>(n) / s.queries : 0.0; };
@@ -198,21 +206,17 @@ ccd::CcdFilter parse_filter(const std::string& name) {
                                                               {"nonpenetration", ccd::CcdFilter::NonPenetration},
                                                               {"projection", ccd::CcdFilter::Projection},
                                                               {"combined", ccd::CcdFilter::Combined}};
-  const auto found = kFilters.find(name);
-  if (found == kFilters.end())
-    throw std::invalid_argument("unknown --filter '" + name +
-                                "' (none, nonpenetration, projection, combined, network)");
-  return found->second;
+  return kFilters.at(name);
 }
 
 void run_ccd(const CcdCommandOptions& options) {
   const bool network = options.filter == "network";
   const ccd::CcdFilter filter = network ? ccd::CcdFilter::Combined : parse_filter(options.filter);
-  if (!network && !options.model.empty()) throw std::invalid_argument("--model needs --filter network");
+  check_network_needs_filter(options.network, options.filter);
+  check_exact_needs_zero_thickness(options.exact, options.thickness);
   std::optional<PairKind> kind;
   if (options.type == "vf") kind = PairKind::VertexFace;
   if (options.type == "ee") kind = PairKind::EdgeEdge;
-  if (!options.type.empty() && !kind) throw std::invalid_argument("unknown --type '" + options.type + "' (vf, ee)");
   ccd::CcdSettings settings;
   settings.thickness = options.thickness;
   settings.decide_exactly = options.exact;
@@ -220,7 +224,7 @@ void run_ccd(const CcdCommandOptions& options) {
     throw std::invalid_argument("--thickness must be a finite number >= 0");
 
   std::optional<NetworkCuller> culler;
-  if (network) culler.emplace(options.model);
+  if (network) culler.emplace(options.network);
 
   // Listed before the per-query file is created, which may lie in the same folder.
   const std::vector<std::string> files = ccd::query_files(options.path);
@@ -277,16 +281,17 @@ void add_ccd_command(CLI::App& app) {
   auto options = std::make_shared<CcdCommandOptions>();
   command->add_option("PATH", options->path, "Query CSV file or folder (searched recursively)")->required();
   command->add_option("--type", options->type,
-                      "Pair type: vf or ee (default: from a vertex-face/edge-edge folder in the path)");
-  command->add_option("--filter", options->filter,
-                      "none, nonpenetration, projection, combined or network (default none)");
-  command->add_option("--model", options->model,
-                      "Pair network for --filter network: model directory or network.xml (default models/default)");
-  command->add_option("--thickness", options->thickness, "Minimum separation (>= 0, default 0)");
+                      "Pair type: vf or ee (default: from a vertex-face/edge-edge folder in the path)")
+      ->check(CLI::IsMember({"vf", "ee"}));
+  add_filter_option(*command, options->filter);
+  add_network_option(*command, options->network, "--model");
+  command->add_option("--thickness", options->thickness, "Minimum separation (>= 0)")
+      ->check(finite_number(0.0, std::numeric_limits<double>::infinity()))
+      ->capture_default_str();
   command->add_flag("--exact", options->exact,
-                    "Thickness 0: decide the queries interval arithmetic leaves undecided exactly (no false positive, "
+                    "Thickness 0 only: decide the queries interval arithmetic leaves undecided exactly (no false positive, "
                     "slower) instead of reporting them as conservative hits");
-  command->add_flag("--json", options->json, "Print the summary as one JSON object");
+  add_json_flag(*command, options->json);
   command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");
   command->callback([options] { run_ccd(*options); });
 }

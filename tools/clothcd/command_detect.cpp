@@ -1,7 +1,9 @@
 // `clothcd detect T0_MESH T1_MESH`: continuous collision detection of one step of a deformable mesh against itself
-// (the obstacle may be part of the same mesh); prints counts and stage times, writes every collision as JSON.
+// (the obstacle may be part of the same mesh); prints counts and stage times, or with --json (and into --out) every
+// collision with its normal, barycentric weights or edge parameters and bodies.
 // `--filter network` runs the detector's network culling (the pair network in front of the combined filters).
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -15,6 +17,8 @@
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
+#include "shared_options.hpp"
 
 namespace clothcd::cli {
 namespace {
@@ -26,8 +30,9 @@ struct DetectOptions {
   bool exact = false;
   std::string bvh = "sphere-root-aabb";
   std::string filter = "combined";
-  std::string model;
+  std::string network;
   std::string out;
+  bool json = false;
 };
 
 // The face index of each vertex-face collision (collisions name the face by its three vertices): a face listed
@@ -51,67 +56,72 @@ std::vector<int> collision_faces(const TriangleMesh& mesh, const std::vector<Col
 }
 
 // A time in milliseconds to the microsecond (the full 17 digits of the other numbers say nothing here).
-std::string milliseconds(double ms) {
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(3) << ms;
-  return text.str();
+double milliseconds(double ms) { return std::round(ms * 1000.0) / 1000.0; }
+
+// One collision's JSON: its pair (vertex and face index, or two edges), body of each vertex, time of impact, the
+// barycentric weights (vertex-face) or edge parameters (edge-edge), the contact normal, and whether it is conservative.
+Json collision_json(const Collision& c, int face) {
+  Json item;
+  if (c.kind == PairKind::VertexFace) {
+    item["pair"] = {c.vertices[0].vertex, face};
+    item["face_vertices"] = {c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
+    item["barycentric"] = {1.0 - c.parameters[0] - c.parameters[1], c.parameters[0], c.parameters[1]};
+  } else {
+    item["pair"] = {{c.vertices[0].vertex, c.vertices[1].vertex}, {c.vertices[2].vertex, c.vertices[3].vertex}};
+    item["edge_parameters"] = {c.parameters[0], c.parameters[1]};
+  }
+  item["bodies"] = {c.vertices[0].body, c.vertices[1].body, c.vertices[2].body, c.vertices[3].body};
+  item["toi"] = c.toi;
+  item["normal"] = json_vector(c.normal);
+  item["conservative"] = c.conservative;
+  return item;
 }
 
-void write_json(std::ostream& out, const DetectOptions& o, const TriangleMesh& mesh,
-                const std::vector<Collision>& collisions, const DetectionStats& s, double load_ms) {
+Json detect_json(const DetectOptions& o, const TriangleMesh& mesh, const std::vector<Collision>& collisions,
+                 const DetectionStats& s, double load_ms) {
   const std::vector<int> faces = collision_faces(mesh, collisions);
-  long vf = 0, ee = 0;
-  for (const Collision& c : collisions) (c.kind == PairKind::VertexFace ? vf : ee) += 1;
-  out << std::setprecision(17);
-  out << "{\n  \"t0\": " << json_string(o.t0_path) << ",\n  \"t1\": " << json_string(o.t1_path) << ",\n"
-      << "  \"vertices\": " << mesh.vertex_count() << ",\n  \"faces\": " << mesh.face_count() << ",\n"
-      << "  \"thickness\": " << o.thickness << ",\n  \"exact\": " << (o.exact ? "true" : "false") << ",\n  \"bvh\": \"" << o.bvh << "\",\n  \"filter\": \"" << o.filter
-      << "\",\n  \"counts\": {\"candidates_vertex_face\": " << s.candidates_vertex_face
-      << ", \"candidates_edge_edge\": " << s.candidates_edge_edge << ", \"culled\": " << s.culled
-      << ", \"vertex_face\": " << vf << ", \"edge_edge\": " << ee << "},\n"
-      << "  \"times_ms\": {\"load\": " << milliseconds(load_ms) << ", \"refit\": " << milliseconds(s.refit_ms)
-      << ", \"traversal\": " << milliseconds(s.traversal_ms) << ", \"filters\": " << milliseconds(s.culling_ms)
-      << ", \"exact\": " << milliseconds(s.exact_ms) << "},\n";
-  if (o.filter == "network")
-    out << "  \"network\": {\"dropped\": " << s.network_dropped << ", \"overruled\": " << s.network_overruled
-        << ", \"kept\": " << s.network_kept << ", \"network_ms\": " << milliseconds(s.network_ms)
-        << ", \"filters_ms\": " << milliseconds(s.network_filters_ms) << "},\n";
-  const char* separator = "";
-  out << "  \"vertex_face\": [";
+  Json vertex_face = Json::array(), edge_edge = Json::array();
   std::size_t vertex_face_index = 0;
   for (const Collision& c : collisions) {
-    if (c.kind != PairKind::VertexFace) continue;
-    const int f = faces[vertex_face_index++];
-    out << separator << "\n    {\"pair\": [" << c.vertices[0].vertex << ", " << f << "], \"toi\": " << c.toi
-        << (c.conservative ? ", \"conservative\": true" : "") << "}";
-    separator = ",";
+    if (c.kind == PairKind::VertexFace)
+      vertex_face.push_back(collision_json(c, faces[vertex_face_index++]));
+    else
+      edge_edge.push_back(collision_json(c, -1));
   }
-  out << "\n  ],\n  \"edge_edge\": [";
-  separator = "";
-  for (const Collision& c : collisions) {
-    if (c.kind != PairKind::EdgeEdge) continue;
-    out << separator << "\n    {\"pair\": [[" << c.vertices[0].vertex << ", " << c.vertices[1].vertex << "], ["
-        << c.vertices[2].vertex << ", " << c.vertices[3].vertex << "]], \"toi\": " << c.toi
-        << (c.conservative ? ", \"conservative\": true" : "") << "}";
-    separator = ",";
-  }
-  out << "\n  ]\n}\n";
+  Json report = json_report("detect");
+  report["t0"] = o.t0_path;
+  report["t1"] = o.t1_path;
+  report["vertices"] = mesh.vertex_count();
+  report["faces"] = mesh.face_count();
+  report["thickness"] = o.thickness;
+  report["exact"] = o.exact;
+  report["bvh"] = o.bvh;
+  report["filter"] = o.filter;
+  report["counts"] = {{"candidates_vertex_face", s.candidates_vertex_face},
+                      {"candidates_edge_edge", s.candidates_edge_edge},
+                      {"culled", s.culled},
+                      {"vertex_face", vertex_face.size()},
+                      {"edge_edge", edge_edge.size()}};
+  report["times_ms"] = {{"load", milliseconds(load_ms)},       {"refit", milliseconds(s.refit_ms)},
+                        {"traversal", milliseconds(s.traversal_ms)}, {"filters", milliseconds(s.culling_ms)},
+                        {"exact", milliseconds(s.exact_ms)}};
+  if (o.filter == "network")
+    report["network"] = {{"dropped", s.network_dropped},          {"overruled", s.network_overruled},
+                         {"kept", s.network_kept},                {"network_ms", milliseconds(s.network_ms)},
+                         {"filters_ms", milliseconds(s.network_filters_ms)}};
+  report["vertex_face"] = std::move(vertex_face);
+  report["edge_edge"] = std::move(edge_edge);
+  return report;
 }
 
 void run_detect(const DetectOptions& o) {
-  static const std::map<std::string, HierarchyKind> hierarchies = {
-      {"sphere-root-aabb", HierarchyKind::SphereRootAabb}, {"aabb", HierarchyKind::Aabb},
-      {"aabb-obb", HierarchyKind::AabbObb}};
-  static const std::map<std::string, CullingMode> filters = {{"none", CullingMode::None},
-                                                             {"nonpenetration", CullingMode::NonPenetration},
-                                                             {"projection", CullingMode::Projection},
-                                                             {"combined", CullingMode::Filters},
-                                                             {"network", CullingMode::Network}};
-  if (o.filter != "network" && !o.model.empty()) throw std::invalid_argument("--model needs --filter network");
+  check_network_needs_filter(o.network, o.filter);
+  check_exact_needs_zero_thickness(o.exact, o.thickness);
+  if (!o.out.empty()) check_output_file(o.out, "--out");
   DetectorSettings settings;
-  settings.model_path = o.model;
-  settings.hierarchy = hierarchies.at(o.bvh);
-  settings.culling = filters.at(o.filter);
+  settings.model_path = o.network;
+  settings.hierarchy = hierarchy_named(o.bvh);
+  settings.culling = culling_named(o.filter);
   settings.thickness = o.thickness;
   settings.decide_exactly = o.exact;
 
@@ -123,6 +133,18 @@ void run_detect(const DetectOptions& o) {
   CollisionDetector detector(t0.faces, static_cast<int>(t0.vertex_count()), settings);
   const std::vector<Collision>& collisions = detector.detect(t0.vertices, frames.end);
   const DetectionStats& s = detector.stats();
+  if (o.json || !o.out.empty()) {
+    const Json report = detect_json(o, t0, collisions, s, load_ms);
+    if (o.json) print_json(report);
+    if (!o.out.empty()) {
+      std::ofstream file(o.out);
+      if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
+      file << report.dump(2) << '\n';
+      file.close();  // flushes: a full disk shows here
+      if (!file) throw std::runtime_error(o.out + ": write failed");
+    }
+    if (o.json) return;
+  }
   long vf = 0;
   for (const Collision& c : collisions) vf += c.kind == PairKind::VertexFace ? 1 : 0;
   std::cout << "mesh:        " << t0.vertex_count() << " vertices, " << t0.face_count() << " faces (one deformable "
@@ -139,13 +161,7 @@ void run_detect(const DetectOptions& o) {
               << " drops overruled, " << s.network_kept << " kept; features+inference " << s.network_ms
               << " ms, filters " << s.network_filters_ms << " ms\n";
   }
-  if (o.out.empty()) return;
-  std::ofstream file(o.out);
-  if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
-  write_json(file, o, t0, collisions, s, load_ms);
-  file.close();  // flushes: a full disk shows here
-  if (!file) throw std::runtime_error(o.out + ": write failed");
-  std::cout << "wrote " << o.out << '\n';
+  if (!o.out.empty()) std::cout << "wrote " << o.out << '\n';
 }
 
 }  // namespace
@@ -158,17 +174,13 @@ void add_detect_command(CLI::App& app) {
   command->add_option("--thickness", o->thickness, "Minimum separation, in mesh units")
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()));
   command->add_flag("--exact", o->exact,
-                    "Thickness 0: decide the pairs interval arithmetic leaves undecided exactly instead of reporting "
-                    "them as conservative hits");
-  command->add_option("--bvh", o->bvh, "Hierarchy")
-      ->check(CLI::IsMember({"sphere-root-aabb", "aabb", "aabb-obb"}))
-      ->capture_default_str();
-  command->add_option("--filter", o->filter, "Culling before the exact test")
-      ->check(CLI::IsMember({"none", "nonpenetration", "projection", "combined", "network"}))
-      ->capture_default_str();
-  command->add_option("--model", o->model,
-                      "Pair network for --filter network: model directory or network.xml (default models/default)");
-  command->add_option("--out", o->out, "Write every collision and the stage times as JSON");
+                    "Thickness 0 only: decide the pairs interval arithmetic leaves undecided exactly instead of "
+                    "reporting them as conservative hits");
+  add_bvh_option(*command, o->bvh);
+  add_filter_option(*command, o->filter);
+  add_network_option(*command, o->network, "--model");
+  add_json_flag(*command, o->json);
+  command->add_option("--out", o->out, "Also write the JSON report (every collision and the stage times) to this file");
   command->callback([o] { run_detect(*o); });
 }
 

@@ -1,6 +1,5 @@
 // `clothcd gen-dataset --out FILE.csv`: labelled candidate pairs from simulated steps (Jin et al., section 3.3.1 (1)),
 // written as the pair data set CSV that `clothcd train` reads (datasets/README.md).
-#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +11,9 @@
 #include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
+#include "progress.hpp"
+#include "shared_options.hpp"
 
 namespace clothcd::cli {
 namespace {
@@ -23,16 +25,10 @@ struct GenDatasetOptions {
   std::string seeds = "1";
   double rebalance = 0.0;
   learning::DatasetGenerationSettings settings;
+  std::string cache;
+  bool json = false;
+  bool quiet = false;
 };
-
-void print_progress(std::size_t done, std::size_t total) {
-  constexpr int kWidth = 30;
-  const int filled = total == 0 ? kWidth : static_cast<int>(kWidth * done / total);
-  std::fprintf(stderr, "\rsimulating [%s%s] %zu/%zu steps", std::string(filled, '#').c_str(),
-               std::string(kWidth - filled, '.').c_str(), done, total);
-  if (done == total) std::fputc('\n', stderr);
-  std::fflush(stderr);
-}
 
 double percent(std::size_t part, std::size_t whole) {
   return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
@@ -41,6 +37,7 @@ double percent(std::size_t part, std::size_t whole) {
 void run_gen_dataset(GenDatasetOptions options) {
   learning::DatasetGenerationSettings& settings = options.settings;
   settings.scenes = split_commas(options.scenes);
+  settings.model_dir = options.cache;
   settings.cloths.clear();
   for (const std::string& c : split_commas(options.cloths)) {
     if (c.size() != 1) throw std::invalid_argument("gen-dataset: unknown cloth '" + c + "' (use A, B or C)");
@@ -50,10 +47,10 @@ void run_gen_dataset(GenDatasetOptions options) {
   for (const std::string& seed : split_commas(options.seeds)) settings.seeds.push_back(std::stoull(seed));
   if (!(options.rebalance >= 0.0)) throw std::invalid_argument("gen-dataset: --rebalance must be >= 0");
   // Checked before the simulations, which can take minutes.
-  const std::filesystem::path folder = std::filesystem::path(options.out).parent_path();
-  if (!folder.empty() && !std::filesystem::is_directory(folder))
-    throw std::runtime_error(options.out + ": cannot open for writing (no folder " + folder.string() + ")");
-  learning::GeneratedDataset generated = learning::generate_pair_dataset(settings, print_progress);
+  check_output_file(options.out, "--out");
+  Progress progress("simulating", "steps", options.quiet);
+  learning::GeneratedDataset generated = learning::generate_pair_dataset(
+      settings, [&](std::size_t done, std::size_t total) { progress.update(done, total); });
   learning::PairDataset& dataset = generated.dataset;
   if (options.rebalance > 0.0) dataset = learning::rebalance_training_rows(dataset, options.rebalance, settings.seed);
   learning::write_pair_dataset_csv(dataset, options.out);
@@ -62,6 +59,18 @@ void run_gen_dataset(GenDatasetOptions options) {
   for (PairKind t : dataset.type) vf += t == PairKind::VertexFace ? 1 : 0;
   const std::size_t rows = dataset.row_count();
   const learning::ClassBalance balance = learning::class_balance(dataset);
+  if (options.json) {
+    Json out = json_report("gen-dataset");
+    out["out"] = options.out;
+    out["candidates_seen"] = generated.candidates_seen;
+    if (settings.keep_collisions) out["collisions_seen"] = generated.collisions_seen;
+    out["rows"] = rows;
+    out["vertex_face_rows"] = vf;
+    out["edge_edge_rows"] = rows - vf;
+    out["splits"] = class_balance_json(balance);
+    print_json(out);
+    return;
+  }
   std::cout << "candidate pairs seen: " << generated.candidates_seen << "\n";
   if (settings.keep_collisions)
     std::cout << "colliding candidates seen (all kept): " << generated.collisions_seen << "\n";
@@ -101,7 +110,9 @@ void add_gen_dataset_command(CLI::App& app) {
   command->add_option("--features", s.features.count, "Feature count")->capture_default_str();
   command->add_option("--seed", s.seed, "Seed of the sampling and the 60/20/20 split")
       ->check(kSeedNumber)->capture_default_str();
-  command->add_option("--model-dir", s.model_dir, "Cache folder of the obstacle models");
+  add_cache_option(*command, options->cache, "--model-dir");
+  add_json_flag(*command, options->json);
+  add_quiet_flag(*command, options->quiet);
   command->callback([options] { run_gen_dataset(*options); });
 }
 

@@ -15,22 +15,22 @@
 #include "clothcd/mesh/mesh_io.hpp"
 #include "clothcd/mesh/model_catalog.hpp"
 #include "commands.hpp"
+#include "shared_options.hpp"
 
 namespace clothcd::cli {
 namespace {
 
-std::string vector_text(const Eigen::Vector3d& v, bool json) {
+std::string vector_text(const Eigen::Vector3d& v) {
   std::ostringstream out;
-  out << std::setprecision(10) << (json ? "[" : "") << v.x() << (json ? ", " : " ") << v.y() << (json ? ", " : " ")
-      << v.z() << (json ? "]" : "");
+  out << std::setprecision(10) << v.x() << ' ' << v.y() << ' ' << v.z();
   return out.str();
 }
 
-// A mesh file, or a model of the catalog (fetched into the default model folder) when no such file exists.
-TriangleMesh load_file_or_model(const std::string& name, LoadReport& report) {
+// A mesh file, or a model of the catalog (fetched into the cache folder) when no such file exists.
+TriangleMesh load_file_or_model(const std::string& name, const std::string& cache, LoadReport& report) {
   if (std::filesystem::exists(name)) return load_mesh(name, {}, &report);
   for (const ModelSource& model : model_catalog()) {
-    if (model.name == name) return load_mesh(fetch_model(name, default_model_dir()), {}, &report);
+    if (model.name == name) return load_mesh(fetch_model(name, cache), {}, &report);
   }
   return load_mesh(name, {}, &report);  // reports the missing file
 }
@@ -43,6 +43,7 @@ void add_obb_command(CLI::App& app) {
   auto method = std::make_shared<std::string>("adaptive-simplified");
   auto settings = std::make_shared<geometry::ObbSettings>();
   auto json = std::make_shared<bool>(false);
+  auto cache = std::make_shared<std::string>();
   command->add_option("MESH", *path, "Mesh file, or a model name of `clothcd meshes` (e.g. rabbit)")->required();
   command->add_option("--method", *method, "aabb, sphere, covariance, adaptive, adaptive-simplified or tight")
       ->check(CLI::IsMember({"aabb", "sphere", "covariance", "adaptive", "adaptive-simplified", "tight"}))
@@ -52,10 +53,11 @@ void add_obb_command(CLI::App& app) {
       ->check(finite_number(0.0, 1.0, true))
       ->capture_default_str();
   command->add_option("--slabs", settings->slabs, "adaptive methods: slabs per axis")->check(CLI::Range(1, 256));
-  command->add_flag("--json", *json, "Print one JSON object");
+  add_cache_option(*command, *cache);
+  add_json_flag(*command, *json);
   command->callback([=] {
-    LoadReport report;
-    const TriangleMesh mesh = load_file_or_model(*path, report);
+    LoadReport report_of_input;
+    const TriangleMesh mesh = load_file_or_model(*path, *cache, report_of_input);
     const std::map<std::string, geometry::ObbMethod> methods = {
         {"covariance", geometry::ObbMethod::Covariance},
         {"adaptive", geometry::ObbMethod::FastAdaptive},
@@ -79,34 +81,38 @@ void add_obb_command(CLI::App& app) {
     const double volume = radius >= 0 ? 4.0 / 3.0 * M_PI * radius * radius * radius : box.volume();
     const double model_volume = geometry::mesh_volume(mesh);
     const double tau = model_volume > 0 ? volume / model_volume : std::nan("");
-    const bool j = *json;
-    std::ostringstream out;
-    out << std::setprecision(10);
-    if (j) {
-      out << "{\"mesh\": " << json_string(*path) << ", \"method\": \"" << *method << "\", \"center\": " << vector_text(box.center, j);
+    if (*json) {
+      Json report = json_report("obb");
+      report["mesh"] = *path;
+      report["method"] = *method;
+      report["center"] = json_vector(box.center);
       if (radius >= 0) {
-        out << ", \"radius\": " << radius;
+        report["radius"] = radius;
       } else {
-        out << ", \"axes\": [" << vector_text(box.axes.col(0), j) << ", " << vector_text(box.axes.col(1), j) << ", "
-            << vector_text(box.axes.col(2), j) << "], \"half_extents\": " << vector_text(box.half_extents, j);
+        report["axes"] = {json_vector(box.axes.col(0)), json_vector(box.axes.col(1)), json_vector(box.axes.col(2))};
+        report["half_extents"] = json_vector(box.half_extents);
       }
-      out << ", \"volume\": " << volume << ", \"model_volume\": " << model_volume << ", \"tau\": ";
-      if (model_volume > 0) out << tau; else out << "null";
-      out << ", \"time_ms\": " << ms << ", \"degenerate_faces_dropped\": " << report.degenerate_faces_dropped << "}\n";
-    } else {
-      out << "method:       " << *method << "\ncenter:       " << vector_text(box.center, j) << '\n';
-      if (radius >= 0) {
-        out << "radius:       " << radius << '\n';
-      } else {
-        for (int a = 0; a < 3; ++a) out << "axis " << a << ":       " << vector_text(box.axes.col(a), j) << '\n';
-        out << "half extents: " << vector_text(box.half_extents, j) << '\n';
-      }
-      out << "volume:       " << volume << "\nmodel volume: " << model_volume
-          << (model_volume > 0 ? "" : "  (open or inside-out mesh: tau undefined)") << "\ntau:          " << tau
-          << "\ntime:         " << ms << " ms\n";
-      if (report.degenerate_faces_dropped > 0)
-        out << "dropped:      " << report.degenerate_faces_dropped << " zero-area faces of the input file\n";
+      report["volume"] = volume;
+      report["model_volume"] = model_volume;
+      report["tau"] = tau;  // NaN (open mesh) is written as null
+      report["time_ms"] = ms;
+      report["degenerate_faces_dropped"] = report_of_input.degenerate_faces_dropped;
+      print_json(report);
+      return;
     }
+    std::ostringstream out;
+    out << std::setprecision(10) << "method:       " << *method << "\ncenter:       " << vector_text(box.center) << '\n';
+    if (radius >= 0) {
+      out << "radius:       " << radius << '\n';
+    } else {
+      for (int a = 0; a < 3; ++a) out << "axis " << a << ":       " << vector_text(box.axes.col(a)) << '\n';
+      out << "half extents: " << vector_text(box.half_extents) << '\n';
+    }
+    out << "volume:       " << volume << "\nmodel volume: " << model_volume
+        << (model_volume > 0 ? "" : "  (open or inside-out mesh: tau undefined)") << "\ntau:          " << tau
+        << "\ntime:         " << ms << " ms\n";
+    if (report_of_input.degenerate_faces_dropped > 0)
+      out << "dropped:      " << report_of_input.degenerate_faces_dropped << " zero-area faces of the input file\n";
     std::cout << out.str();
   });
 }

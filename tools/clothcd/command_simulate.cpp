@@ -1,13 +1,11 @@
 // `clothcd simulate --scene NAME --out DIR`: runs one of the paper's scenes (section 4.5) and writes frames, per-step
 // statistics, an independent intersection count per step, rendered pictures and a contact sheet.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -17,6 +15,9 @@
 #include "clothcd/simulation/intersection_check.hpp"
 #include "clothcd/simulation/simulator.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
+#include "progress.hpp"
+#include "shared_options.hpp"
 
 namespace clothcd::cli {
 namespace {
@@ -30,39 +31,21 @@ struct SimulateOptions {
   int resolution = -1;
   int steps = -1;
   double dt = Scene{}.default_dt;
-  std::string culling = "filters";
+  std::string filter = "combined";
   std::string bvh = "sphere-root-aabb";
   int frames_every = 0;
   int check_every = 1;
   double thickness = ResponseSettings{}.thickness;
   double friction = ResponseSettings{}.friction;
   double contact_reach = ResponseSettings{}.contact_reach;
-  std::string model_dir;
-  std::string model_file;
-  std::string network_model;
+  std::string cache;
+  std::string obstacle_file;
+  std::string network;
   std::string out;
   bool no_pictures = false;
+  bool json = false;
+  bool quiet = false;
 };
-
-CullingMode parse_culling(const std::string& name) {
-  static const std::map<std::string, CullingMode> modes = {{"filters", CullingMode::Filters},
-                                                           {"none", CullingMode::None},
-                                                           {"nonpenetration", CullingMode::NonPenetration},
-                                                           {"projection", CullingMode::Projection},
-                                                           {"network", CullingMode::Network}};
-  const auto it = modes.find(name);
-  if (it == modes.end()) throw std::invalid_argument("unknown culling mode '" + name + "'");
-  return it->second;
-}
-
-HierarchyKind parse_hierarchy(const std::string& name) {
-  static const std::map<std::string, HierarchyKind> kinds = {{"sphere-root-aabb", HierarchyKind::SphereRootAabb},
-                                                             {"aabb", HierarchyKind::Aabb},
-                                                             {"aabb-obb", HierarchyKind::AabbObb}};
-  const auto it = kinds.find(name);
-  if (it == kinds.end()) throw std::invalid_argument("unknown hierarchy '" + name + "'");
-  return it->second;
-}
 
 TriangleMesh merge(const std::vector<TriangleMesh>& meshes) {
   TriangleMesh all;
@@ -89,33 +72,10 @@ std::string numbered(const std::string& stem, int step, const std::string& exten
   return name.str();
 }
 
-/// Draws a progress bar on stderr once the run has taken more than two seconds, at most ten times a second.
-class ProgressBar {
- public:
-  explicit ProgressBar(int total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  void update(int done) {
-    const auto now = std::chrono::steady_clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (elapsed < 2.0 || (done < total_ && std::chrono::duration<double>(now - last_).count() < 0.1)) return;
-    last_ = now;
-    shown_ = true;
-    const int width = 40, filled = total_ > 0 ? width * done / total_ : width;
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] " << done << '/' << total_
-              << "  " << std::fixed << std::setprecision(1) << elapsed << " s" << std::flush;
-  }
-  ~ProgressBar() {
-    if (shown_) std::cerr << '\n';
-  }
-
- private:
-  int total_;
-  std::chrono::steady_clock::time_point start_, last_;
-  bool shown_ = false;
-};
-
 struct Pictures {
   render::Camera camera;
   std::vector<render::Image> thumbnails;
+  std::vector<std::string> labels;  ///< "STEP N" of each thumbnail.
 };
 
 render::Image draw(const Simulator& sim, const Pictures& pictures, int width, int height) {
@@ -134,6 +94,7 @@ void save_frame(const Simulator& sim, const fs::path& out, Pictures* pictures) {
   if (pictures == nullptr) return;
   render::write_png(draw(sim, *pictures, 640, 480), out / "renders" / numbered("frame", step, ".png"));
   pictures->thumbnails.push_back(draw(sim, *pictures, 320, 240));
+  pictures->labels.push_back("STEP " + std::to_string(step));
 }
 
 render::Camera scene_camera(const Scene& scene) {
@@ -151,6 +112,8 @@ render::Camera scene_camera(const Scene& scene) {
 
 void run(const SimulateOptions& options) {
   if (options.cloth.size() != 1) throw std::invalid_argument("--cloth must be A, B or C");
+  check_network_needs_filter(options.network, options.filter);
+  create_output_folder(options.out, "--out");
   if (options.frames_every < 0 || options.check_every < 1) {
     throw std::invalid_argument("--frames-every must be >= 0 and --check-every >= 1");
   }
@@ -158,8 +121,8 @@ void run(const SimulateOptions& options) {
   scene_settings.name = options.scene;
   scene_settings.cloth = options.cloth[0];
   scene_settings.resolution = options.resolution;
-  scene_settings.model_dir = options.model_dir;
-  scene_settings.model_file = options.model_file;
+  scene_settings.model_dir = options.cache;
+  scene_settings.model_file = options.obstacle_file;
   const Scene scene = make_scene(scene_settings);
 
   SimulationSettings settings;
@@ -167,12 +130,9 @@ void run(const SimulateOptions& options) {
   settings.response.thickness = options.thickness;
   settings.response.friction = options.friction;
   settings.response.contact_reach = options.contact_reach;
-  settings.detector.culling = parse_culling(options.culling);
-  settings.detector.hierarchy = parse_hierarchy(options.bvh);
-  if (!options.network_model.empty() && settings.detector.culling != CullingMode::Network) {
-    throw std::invalid_argument("--network-model needs --culling network");
-  }
-  settings.detector.model_path = options.network_model;
+  settings.detector.culling = culling_named(options.filter);
+  settings.detector.hierarchy = hierarchy_named(options.bvh);
+  settings.detector.model_path = options.network;
   const int steps = options.steps < 0 ? scene.default_steps : options.steps;
   const int frames_every = options.frames_every > 0 ? options.frames_every : std::max(1, steps / 11);
 
@@ -180,7 +140,7 @@ void run(const SimulateOptions& options) {
   const fs::path out = options.out;
   fs::create_directories(out / "frames");
   if (!options.no_pictures) fs::create_directories(out / "renders");
-  Pictures pictures{scene_camera(scene), {}};
+  Pictures pictures{scene_camera(scene), {}, {}};
   Pictures* picture_sink = options.no_pictures ? nullptr : &pictures;
 
   std::ofstream csv(out / "stats.csv");
@@ -191,7 +151,7 @@ void run(const SimulateOptions& options) {
 
   double detection_total = 0, step_total = 0, response_total = 0;
   long intersecting_steps = 0, failsafe_steps = 0;
-  ProgressBar progress(steps);
+  Progress progress("simulating", "steps", options.quiet);
   for (int s = 0; s < steps; ++s) {
     const StepStats st = sim.step();
     detection_total += st.detection_ms;
@@ -210,26 +170,46 @@ void run(const SimulateOptions& options) {
     }
     csv << '\n';
     if (sim.steps_taken() % frames_every == 0 || s + 1 == steps) save_frame(sim, out, picture_sink);
-    progress.update(s + 1);
+    progress.update(static_cast<std::size_t>(s + 1), static_cast<std::size_t>(steps));
   }
   csv.close();
   if (picture_sink != nullptr) {
-    render::write_png(render::contact_sheet(pictures.thumbnails, 4), out / "contact_sheet.png");
+    render::write_png(render::contact_sheet(pictures.thumbnails, 4, 4, pictures.labels), out / "contact_sheet.png");
   }
 
   const double n = std::max(1, steps);
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
-  std::cout << "scene:              " << scene.name << " (cloth " << sim.model().vertex_count() << " vertices, "
-            << sim.model().rest.faces.rows() << " triangles; " << scene.obstacles.size() << " obstacle(s))\n"
-            << "steps:              " << steps << " x " << settings.dt << " s\n"
-            << "detection:          " << detection_total / n << " ms/step\n"
-            << "response:           " << response_total / n << " ms/step\n"
-            << "whole step:         " << step_total / n << " ms/step\n"
-            << "fail-safe steps:    " << failsafe_steps << '\n'
-            << "intersecting steps: " << intersecting_steps << '\n'
-            << "output:             " << out.string() << '\n'
-            << "state hash:         " << hash << '\n';
+  if (options.json) {
+    Json report = json_report("simulate");
+    report["scene"] = scene.name;
+    report["cloth_vertices"] = sim.model().vertex_count();
+    report["cloth_triangles"] = sim.model().rest.faces.rows();
+    report["obstacles"] = scene.obstacles.size();
+    report["steps"] = steps;
+    report["dt"] = settings.dt;
+    report["filter"] = options.filter;
+    report["bvh"] = options.bvh;
+    report["detection_ms_per_step"] = detection_total / n;
+    report["response_ms_per_step"] = response_total / n;
+    report["step_ms_per_step"] = step_total / n;
+    report["failsafe_steps"] = failsafe_steps;
+    report["intersecting_steps"] = intersecting_steps;
+    report["output"] = out.string();
+    report["state_hash"] = hash;
+    print_json(report);
+  } else {
+    std::cout << "scene:              " << scene.name << " (cloth " << sim.model().vertex_count() << " vertices, "
+              << sim.model().rest.faces.rows() << " triangles; " << scene.obstacles.size() << " obstacle(s))\n"
+              << "steps:              " << steps << " x " << settings.dt << " s\n"
+              << "detection:          " << detection_total / n << " ms/step\n"
+              << "response:           " << response_total / n << " ms/step\n"
+              << "whole step:         " << step_total / n << " ms/step\n"
+              << "fail-safe steps:    " << failsafe_steps << '\n'
+              << "intersecting steps: " << intersecting_steps << '\n'
+              << "output:             " << out.string() << '\n'
+              << "state hash:         " << hash << '\n';
+  }
   if (intersecting_steps > 0) {
     throw std::runtime_error(std::to_string(intersecting_steps) + " step(s) ended with intersecting triangle pairs");
   }
@@ -239,9 +219,11 @@ void run(const SimulateOptions& options) {
 
 void add_simulate_command(CLI::App& app) {
   auto* command = app.add_subcommand("simulate", "Run a cloth scene; write frames, stats.csv and pictures");
+  command->footer("Exit code: 0 when every checked step ended free of intersections; 1 when a step ended with "
+                  "intersecting triangle pairs (the summary and stats.csv are written first) or on any error.");
   auto options = std::make_shared<SimulateOptions>();
   command->add_option("--scene", options->scene, "box, character, walker, rabbit, cat, dinosaur, human, bird, sphere, "
-                                                 "cube, fish, or file (with --model)");
+                                                 "cube, fish, or file (with --obstacle)");
   command->add_option("--cloth", options->cloth, "The paper's cloth: A (20x20), B (30x30), C (50x50)")
       ->check(CLI::IsMember({"A", "B", "C"}));
   command->add_option("--resolution", options->resolution, "N x N cloth vertices instead of --cloth (the thickness must stay below half the edge length: "
@@ -250,8 +232,9 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--steps", options->steps, "Number of steps (default: the scene's)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   command->add_option("--dt", options->dt, "Step in seconds (default 0.005)");
-  command->add_option("--culling", options->culling, "filters, none, nonpenetration, projection or network");
-  command->add_option("--bvh", options->bvh, "sphere-root-aabb, aabb or aabb-obb");
+  add_filter_option(*command, options->filter, "--culling", {{"filters", "combined"}});
+  add_network_option(*command, options->network, "--network-model");
+  add_bvh_option(*command, options->bvh);
   command->add_option("--frames-every", options->frames_every, "Write a frame every K steps (default: 12 frames)");
   command->add_option("--check-every", options->check_every, "Run the intersection check every K steps (default 1)");
   command->add_option("--thickness", options->thickness, "Cloth thickness in metres");
@@ -259,13 +242,13 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--contact-reach", options->contact_reach,
                       "Re-apply earlier steps' contacts before detection while their gap is within this many "
                       "thicknesses (default 4; 0 turns the contact memory off)");
-  command->add_option("--model-dir", options->model_dir, "Model cache folder (default $CLOTHCD_MODEL_DIR or "
-                                                         ".cache/models)");
-  command->add_option("--model", options->model_file, "Obstacle mesh file for --scene file");
-  command->add_option("--network-model", options->network_model,
-                      "Pair network for --culling network: a model directory (default: models/default)");
+  add_cache_option(*command, options->cache, "--model-dir");
+  command->add_option("--obstacle", options->obstacle_file, "Obstacle mesh file for --scene file");
+  command->add_option("--model", options->obstacle_file, "old spelling of --obstacle")->group("");
   command->add_flag("--no-pictures", options->no_pictures, "Skip PNG renders and the contact sheet");
   command->add_option("--out", options->out, "Output folder")->required();
+  add_json_flag(*command, options->json);
+  add_quiet_flag(*command, options->quiet);
   command->callback([options] { run(*options); });
 }
 

@@ -1,6 +1,5 @@
 // `clothcd train DATASET.csv --out models/NAME`: the paper's network trained by OpenNN with incremental neuron
-// selection; writes network.xml, card.json, neurons.csv and neurons.png into the output directory.
-#include <cstdio>
+// selection; writes network.xml, card.json, neurons.csv and neurons.svg into the output directory.
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +11,9 @@
 #include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/learning/random_pairs.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
+#include "progress.hpp"
+#include "shared_options.hpp"
 
 namespace clothcd::cli {
 namespace {
@@ -22,23 +24,19 @@ struct TrainOptions {
   double rebalance = 0.0;
   std::size_t random_pairs = 0;
   learning::TrainingSettings settings;
+  bool json = false;
+  bool quiet = false;
 };
 
-void print_progress(std::size_t done, std::size_t total, std::size_t neurons) {
-  constexpr int kWidth = 30;
-  const int filled = total == 0 ? kWidth : static_cast<int>(kWidth * done / total);
-  std::fprintf(stderr, "\rtraining [%s%s] %zu/%zu  (hidden neurons %zu)", std::string(filled, '#').c_str(),
-               std::string(kWidth - filled, '.').c_str(), done, total, neurons);
-  if (done == total) std::fputc('\n', stderr);
-  std::fflush(stderr);
-}
-
 void run_train(const TrainOptions& options) {
+  // Checked before any work, which can take minutes.
+  create_output_folder(options.out, "--out");
+  if (options.random_pairs > 0) check_output_file(options.dataset, "DATASET", {".csv"});
   if (options.random_pairs > 0) {
     learning::RandomPairSettings random;
     random.rows = options.random_pairs;
     random.seed = options.settings.seed;
-    std::cerr << "writing " << random.rows << " labelled random pairs to " << options.dataset << '\n';
+    if (!options.quiet) std::cerr << "writing " << random.rows << " labelled random pairs to " << options.dataset << '\n';
     learning::write_pair_dataset_csv(learning::make_random_pair_dataset(random), options.dataset);
   }
   learning::PairDataset dataset = learning::read_pair_dataset_csv(options.dataset);
@@ -48,18 +46,45 @@ void run_train(const TrainOptions& options) {
   learning::TrainingSettings settings = options.settings;
   settings.feature_count = dataset.feature_count();
   const learning::ClassBalance balance = learning::class_balance(dataset);
+  Progress progress("training", "trainings", options.quiet);
+  const learning::TrainingReport report = learning::train_pair_network(
+      dataset, settings, options.out, options.dataset, [&](std::size_t done, std::size_t total, std::size_t neurons) {
+        progress.update(done, total, "hidden neurons " + std::to_string(neurons));
+      });
+  const learning::ModelCard& card = report.card;
+  if (options.json) {
+    Json out = json_report("train");
+    out["dataset"] = options.dataset;
+    out["out"] = options.out;
+    out["splits"] = class_balance_json(balance);
+    Json curve = Json::array();
+    for (const learning::NeuronCountResult& r : report.curve)
+      curve.push_back({{"neurons", r.neurons}, {"training_error", r.training_error},
+                       {"selection_error", r.selection_error}});
+    out["neuron_curve"] = curve;
+    out["hidden_neurons"] = card.hidden_neurons;
+    out["dropped_columns"] = card.dropped_columns;
+    out["selection_confusion"] = confusion_json(report.selection_confusion);
+    out["selection_accuracy"] = report.selection_confusion.accuracy();
+    out["testing_confusion"] = confusion_json(report.testing_confusion);
+    out["testing_accuracy"] = card.rows_testing > 0 ? Json(report.testing_confusion.accuracy()) : Json(nullptr);
+    out["testing_auc"] = report.testing_auc;  // NaN (undefined) is written as null
+    out["decision_threshold"] = card.decision_threshold;
+    out["drop_below"] = card.drop_below;
+    out["keep_from"] = card.keep_from;
+    out["files"] = {"network.xml", "card.json", "neurons.csv", "neurons.svg"};
+    print_json(out);
+    return;
+  }
   std::cout << "data set: " << options.dataset << "\n";
   for (int s = 0; s < 3; ++s)
     std::cout << "  " << std::setw(9) << learning::split_name(static_cast<learning::Split>(s)) << ": "
               << balance.rows[s] << " rows, filter label 1: " << balance.filter_positive[s]
               << ", exact label 1: " << balance.exact_positive[s] << '\n';
-  const learning::TrainingReport report =
-      learning::train_pair_network(dataset, settings, options.out, options.dataset, print_progress);
   std::cout << "neurons  training_error  selection_error\n";
   for (const learning::NeuronCountResult& r : report.curve)
     std::cout << std::setw(7) << r.neurons << "  " << std::setw(14) << r.training_error << "  " << std::setw(15)
               << r.selection_error << '\n';
-  const learning::ModelCard& card = report.card;
   std::cout << "chosen hidden neurons: " << card.hidden_neurons << "\n"
             << "dropped constant columns: " << card.dropped_columns.size() << "\n"
             << "selection accuracy: " << report.selection_confusion.accuracy() << "\n"
@@ -71,7 +96,7 @@ void run_train(const TrainOptions& options) {
             << "\n"
             << "operating point: drop below " << card.drop_below << ", keep from "
             << card.keep_from << " (decision threshold " << card.decision_threshold << ")\n"
-            << "wrote " << options.out << "/{network.xml,card.json,neurons.csv,neurons.png}\n";
+            << "wrote " << options.out << "/{network.xml,card.json,neurons.csv,neurons.svg}\n";
 }
 
 }  // namespace
@@ -98,6 +123,8 @@ void add_train_command(CLI::App& app) {
   command->add_option("--random-pairs", options->random_pairs,
                       "First write N seeded random CCD pairs (labelled by the CCD filters and exact CCD) to DATASET")
       ->check(CLI::Range(1, 100000000));
+  add_json_flag(*command, options->json);
+  add_quiet_flag(*command, options->quiet);
   command->callback([options] { run_train(*options); });
 }
 

@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -42,30 +41,12 @@ inline const CLI::Validator kSeedNumber(
     },
     "SEED");
 
-/// `text` as a quoted JSON string (quotes, backslashes and control characters escaped), for file paths in JSON output.
 /// `value` as a stream prints it by default when `defined`, else `undefined` (a measure without the data it needs).
 inline std::string measure_text(bool defined, double value, const char* undefined) {
   if (!defined) return undefined;
   std::ostringstream text;
   text << value;
   return text.str();
-}
-
-inline std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 /// "a,b,c" split at its commas ("" gives one empty item).
@@ -98,9 +79,9 @@ inline CLI::Validator comma_list(bool seeds = false) {
 void add_info_command(CLI::App& app);
 /// Adds `clothcd convert IN OUT`.
 void add_convert_command(CLI::App& app);
-/// Adds `clothcd meshes [--dir DIR]`.
+/// Adds `clothcd meshes [--cache DIR]`.
 void add_meshes_command(CLI::App& app);
-/// Adds `clothcd detect T0_MESH T1_MESH [--thickness H] [--bvh KIND] [--filter F] [--out FILE.json]`.
+/// Adds `clothcd detect T0_MESH T1_MESH [--thickness H] [--bvh KIND] [--filter F] [--json] [--out FILE.json]`.
 void add_detect_command(CLI::App& app);
 /// Adds `clothcd ccd PATH [--type vf|ee] [--filter ...] [--thickness H] [--json] [--per-query FILE]`.
 void add_ccd_command(CLI::App& app);
@@ -112,7 +93,7 @@ void add_obb_command(CLI::App& app);
 void add_train_command(CLI::App& app);
 /// Adds `clothcd evaluate MODEL DATASET`.
 void add_evaluate_command(CLI::App& app);
-/// Adds `clothcd simulate --scene NAME --cloth A|B|C [--steps N] [--dt S] [--culling ...] [--bvh ...] --out DIR`.
+/// Adds `clothcd simulate --scene NAME --cloth A|B|C [--steps N] [--dt S] [--filter ...] [--bvh ...] --out DIR`.
 void add_simulate_command(CLI::App& app);
 /// Adds `clothcd gen-dataset --out FILE.csv [--scenes ...] [--cloths ...] [--steps N] [--seeds ...] [--max-rows N]`.
 void add_gen_dataset_command(CLI::App& app);

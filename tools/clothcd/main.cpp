@@ -20,7 +20,9 @@ std::string usage_error_message(CLI::App& app, int argc, char** argv, const CLI:
       names += (names.empty() ? "" : ", ") + command->get_name();
     }
     if (!known) return "unknown command '" + first + "' (commands: " + names + ")";
-    return first + ": " + error.what() + " (see clothcd " + first + " --help)";
+    std::string what = error.what();
+    if (what.rfind(": ", 0) == 0) what.erase(0, 2);  // a hidden option's message has no option name before ": "
+    return first + ": " + what + " (see clothcd " + first + " --help)";
   }
   return std::string(error.what()) + " (see clothcd --help)";
 }

@@ -48,7 +48,8 @@ struct EvaluationReport {
 [[nodiscard]] EvaluationReport evaluate_pair_model(const std::string& model, const PairDataset& dataset,
                                                    const EvaluationSettings& settings = {});
 
-/// Writes OUT_PREFIX.csv (threshold, false_positive_rate, true_positive_rate) and OUT_PREFIX.png of the ROC curve.
-void write_roc_curve(const std::vector<RocPoint>& roc, const std::string& out_prefix);
+/// Writes OUT_PREFIX.csv (threshold, false_positive_rate, true_positive_rate) and OUT_PREFIX.svg, the ROC curve
+/// charted with its `auc` (EvaluationReport::auc).
+void write_roc_curve(const std::vector<RocPoint>& roc, double auc, const std::string& out_prefix);
 
 }  // namespace clothcd::learning

@@ -21,7 +21,8 @@ struct ModelSource {
 /// Every model of the catalog: rabbit, cat, dinosaur, human, human-blend, cow, bird, sphere, cube, fish.
 [[nodiscard]] const std::vector<ModelSource>& model_catalog();
 
-/// The cache folder: $CLOTHCD_MODEL_DIR when set, else ".cache/models" under the current directory.
+/// The obstacle model cache folder: $CLOTHCD_CACHE when set (its old name $CLOTHCD_MODEL_DIR is still read), else
+/// the user's cache folder: $XDG_CACHE_HOME/clothcd, or ~/.cache/clothcd without it.
 [[nodiscard]] std::filesystem::path default_model_dir();
 
 /// Returns the path of model `name` in `cache_dir`, copying or extracting it from its package first when missing.

@@ -3,6 +3,7 @@
 /// An 8-bit RGB picture and PNG output.
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace clothcd::render {
@@ -22,7 +23,10 @@ struct Image {
 void write_png(const Image& image, const std::filesystem::path& path);
 
 /// Places `images` on a grid of `columns` columns (cells as large as the largest image, `gap` pixels apart, white
-/// background) and returns the sheet. Throws std::invalid_argument if `images` is empty or `columns` < 1.
-[[nodiscard]] Image contact_sheet(const std::vector<Image>& images, int columns, int gap = 4);
+/// background) and returns the sheet; `labels[k]`, when given, is written in the top-left corner of image k (digits,
+/// spaces and the letters of "STEP", in a small pixel font). Throws std::invalid_argument if `images` is empty,
+/// `columns` < 1, or a label has another character.
+[[nodiscard]] Image contact_sheet(const std::vector<Image>& images, int columns, int gap = 4,
+                                  const std::vector<std::string>& labels = {});
 
 }  // namespace clothcd::render
