@@ -130,7 +130,11 @@ SectionReport run_network(const BenchContext& context) {
 
   std::string& md = report.markdown;
   md += "## Network: Table 2, Figures 12-13\n\n";
-  md += "Model `" + model_dir.string() + "` (" + std::to_string(card.inputs.size()) + " inputs, " +
+  // The model as the repository names it (models/default), not as an absolute path of the machine that ran it.
+  std::error_code error;
+  const fs::path shown = context.repository.empty() ? model_dir : fs::relative(model_dir, context.repository, error);
+  const bool inside = !error && !shown.empty() && *shown.begin() != "..";
+  md += "Model `" + (inside ? shown : model_dir).string() + "` (" + std::to_string(card.inputs.size()) + " inputs, " +
         std::to_string(card.hidden_neurons) + " hidden neurons chosen from 1.." + std::to_string(card.max_neurons) +
         ", " + std::to_string(card.trials) + " trials each), evaluated on " + source + " (" +
         std::to_string(eval.rows) + " rows). Positive = the combined filters keep the pair (the paper's label), " +

@@ -31,8 +31,12 @@ namespace {
 // that holds bench/README.md and models/default; empty outside a checkout.
 fs::path find_repository() {
   std::error_code error;
-  for (fs::path dir = fs::current_path(error); !error && !dir.empty(); dir = dir.parent_path()) {
-    if (fs::is_regular_file(dir / "bench" / "README.md", error) && fs::is_directory(dir / "models" / "default", error))
+  fs::path dir = fs::current_path(error);
+  if (error) return {};
+  for (; !dir.empty(); dir = dir.parent_path()) {
+    std::error_code missing;  // set when a path does not exist: not an error here
+    if (fs::is_regular_file(dir / "bench" / "README.md", missing) &&
+        fs::is_directory(dir / "models" / "default", missing))
       return dir;
     if (dir == dir.root_path()) break;
   }
