@@ -51,6 +51,8 @@ Json parse_card(const std::string& text, const std::string& path) {
     const std::size_t colon = problem.find(": ", problem.find("parse error"));
     if (colon != std::string::npos) problem = problem.substr(colon + 2);
     throw std::runtime_error(path + ": malformed JSON: " + problem + " at offset " + std::to_string(error.byte));
+  } catch (const Json::exception& error) {  // e.g. a number beyond the doubles (1e400)
+    throw std::runtime_error(path + ": malformed JSON: " + error.what());
   }
   if (!duplicate.empty()) throw std::runtime_error(path + ": malformed JSON: duplicate key '" + duplicate + "'");
   return root;

@@ -223,6 +223,9 @@ TEST_CASE("bad model files are clear errors", "[learning][runtime]") {
   CHECK_THROWS_WITH(PairClassifier::load(with_field("big_rows", "training", "18446744073709551631")),
                     Catch::Contains("training") && Catch::Contains("whole number"));
   CHECK_THROWS_WITH(PairClassifier::load(with_field("big_seed", "seed", "1e30")), Catch::Contains("seed"));
+  // A number beyond the doubles is malformed JSON, not a crash or an infinity.
+  CHECK_THROWS_WITH(PairClassifier::load(with_field("huge_drop", "drop_below", "1e400")),
+                    Catch::Contains("card.json") && Catch::Contains("malformed JSON"));
   const std::string duplicate = edited_model("duplicate", "card.json", [](const std::string& text) {
     return "{\n  \"seed\": 7," + text.substr(1);  // a second "seed"
   });
