@@ -3,7 +3,7 @@
 /// The report's charts: the library's SVG line and bar charts (render/svg_chart.hpp), each with a title, axis names
 /// with units, category labels and a legend, so that a chart reads without the report.
 
-#include "render/svg_chart.hpp"
+#include "clothcd/render/svg_chart.hpp"
 
 namespace clothcd::bench {
 

@@ -15,7 +15,7 @@
 #include <stdexcept>
 
 #include "clothcd/learning/pair_classifier.hpp"
-#include "render/svg_chart.hpp"
+#include "clothcd/render/svg_chart.hpp"
 #include "learning/opennn_backend.hpp"
 
 namespace clothcd::learning {

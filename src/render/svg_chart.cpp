@@ -1,5 +1,5 @@
 // SVG line and bar charts (svg_chart.hpp): plot area, "nice" ticks, labels as text elements, legend on the right.
-#include "render/svg_chart.hpp"
+#include "clothcd/render/svg_chart.hpp"
 
 #include <algorithm>
 #include <cmath>

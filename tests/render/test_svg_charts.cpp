@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "render/svg_chart.hpp"
+#include "clothcd/render/svg_chart.hpp"
 #include "support/test_support.hpp"
 
 namespace fs = std::filesystem;

@@ -1,7 +1,7 @@
 #pragma once
 // Line and grouped-bar charts written as SVG (text stays text, the picture scales): a title, axis names with units,
 // numeric ticks, category labels under bar groups and a legend naming every series. Used for the training curve and
-// ROC of a model (the paper's Figures 12-13) and by the benchmark report. Private to the library and its benchmarks.
+// ROC of a model (the paper's Figures 12-13) and by the benchmark report.
 
 #include <array>
 #include <string>
