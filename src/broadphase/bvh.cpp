@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/parallel_invoke.h>
+
 #include "node_obb_axes.hpp"
 
 namespace clothcd::broadphase {
@@ -49,11 +51,16 @@ geometry::Sphere merge_spheres(const geometry::Sphere& a, const geometry::Sphere
   return s;
 }
 
+// A triangle during the build: its box's centre (times two), its box and its index, kept in tree order so that the
+// splits read memory in sequence.
+struct BuildItem {
+  Eigen::Vector3d centroid;
+  FlatBox box;
+  int face;
+};
+
 struct BuildContext {
-  std::vector<int>& order;
-  const std::vector<Eigen::Vector3d>& centroids;
-  const std::vector<FlatBox>& face_boxes;
-  std::vector<BvhNode>& nodes;
+  std::vector<BuildItem>& items;
   int max_leaf;
 };
 
@@ -71,39 +78,48 @@ int bin_of(double x, double lo, double scale) {
 int split_range(BuildContext& context, int begin, int end) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
-  for (int i = begin; i < end; ++i) {
-    lo = lo.cwiseMin(context.centroids[context.order[i]]);
-    hi = hi.cwiseMax(context.centroids[context.order[i]]);
+  const auto first = context.items.begin() + begin, last = context.items.begin() + end;
+  for (auto item = first; item != last; ++item) {
+    lo = lo.cwiseMin(item->centroid);
+    hi = hi.cwiseMax(item->centroid);
+  }
+  // Bins need a finite, non-zero extent and scale (no NaN, infinite or subnormal extent reaches the bin index).
+  std::array<double, 3> scale{};
+  std::array<bool, 3> binned{};
+  for (int axis = 0; axis < 3; ++axis) {
+    const double extent = hi[axis] - lo[axis];
+    scale[axis] = kSahBins / extent;
+    binned[axis] = extent > 0.0 && std::isfinite(extent) && std::isfinite(scale[axis]);
+  }
+  // One pass over the triangles fills the bins of all three axes.
+  std::array<std::array<FlatBox, kSahBins>, 3> bin_box;
+  std::array<std::array<int, kSahBins>, 3> bin_count{};
+  for (auto& boxes : bin_box) boxes.fill(empty_flat_box());
+  for (auto item = first; item != last; ++item) {
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!binned[axis]) continue;
+      const int bin = bin_of(item->centroid[axis], lo[axis], scale[axis]);
+      bin_box[axis][bin].expand(item->box);
+      ++bin_count[axis][bin];
+    }
   }
   double best_cost = std::numeric_limits<double>::infinity();
   int best_axis = -1, best_bin = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    // Bins need a finite, non-zero extent and scale (no NaN, infinite or subnormal extent reaches the bin index).
-    const double extent = hi[axis] - lo[axis];
-    const double scale = kSahBins / extent;
-    if (!(extent > 0.0) || !std::isfinite(extent) || !std::isfinite(scale)) continue;
-    std::array<FlatBox, kSahBins> bin_box;
-    std::array<int, kSahBins> bin_count{};
-    bin_box.fill(empty_flat_box());
-    for (int i = begin; i < end; ++i) {
-      const int f = context.order[i];
-      const int bin = bin_of(context.centroids[f][axis], lo[axis], scale);
-      bin_box[bin].expand(context.face_boxes[f]);
-      ++bin_count[bin];
-    }
+    if (!binned[axis]) continue;
     std::array<double, kSahBins> right_cost{};
     FlatBox right = empty_flat_box();
     int right_count = 0;
     for (int b = kSahBins - 1; b > 0; --b) {
-      right.expand(bin_box[b]);
-      right_count += bin_count[b];
+      right.expand(bin_box[axis][b]);
+      right_count += bin_count[axis][b];
       right_cost[b] = right_count > 0 ? box_area(right) * right_count : 0.0;
     }
     FlatBox left = empty_flat_box();
     int left_count = 0;
     for (int b = 0; b + 1 < kSahBins; ++b) {
-      left.expand(bin_box[b]);
-      left_count += bin_count[b];
+      left.expand(bin_box[axis][b]);
+      left_count += bin_count[axis][b];
       if (left_count == 0 || left_count == end - begin) continue;
       const double cost = box_area(left) * left_count + right_cost[b + 1];
       if (cost < best_cost) {
@@ -117,26 +133,53 @@ int split_range(BuildContext& context, int begin, int end) {
     int axis = 0;
     (hi - lo).maxCoeff(&axis);
     const int middle = begin + (end - begin) / 2;
-    std::nth_element(context.order.begin() + begin, context.order.begin() + middle, context.order.begin() + end,
-                     [&](int a, int b) { return context.centroids[a][axis] < context.centroids[b][axis]; });
+    std::nth_element(first, context.items.begin() + middle, last,
+                     [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
     return middle;
   }
-  const double scale = kSahBins / (hi[best_axis] - lo[best_axis]);
-  const auto middle = std::stable_partition(context.order.begin() + begin, context.order.begin() + end, [&](int f) {
-    return bin_of(context.centroids[f][best_axis], lo[best_axis], scale) <= best_bin;
+  const auto middle = std::stable_partition(first, last, [&](const BuildItem& item) {
+    return bin_of(item.centroid[best_axis], lo[best_axis], scale[best_axis]) <= best_bin;
   });
-  return static_cast<int>(middle - context.order.begin());
+  return static_cast<int>(middle - context.items.begin());
 }
 
-int build_range(BuildContext& context, int begin, int end) {
-  const int index = static_cast<int>(context.nodes.size());
-  context.nodes.push_back(BvhNode{-1, begin, end});
-  if (end - begin <= context.max_leaf) return index;
+// Appends the subtree over order[begin, end) to `nodes` in pre-order (child indices relative to the vector).
+void build_range(BuildContext& context, int begin, int end, std::vector<BvhNode>& nodes) {
+  const int index = static_cast<int>(nodes.size());
+  nodes.push_back(BvhNode{-1, begin, end});
+  if (end - begin <= context.max_leaf) return;
   const int middle = split_range(context, begin, end);
-  build_range(context, begin, middle);
-  const int right = build_range(context, middle, end);
-  context.nodes[index].right = right;
-  return index;
+  build_range(context, begin, middle, nodes);
+  nodes[static_cast<std::size_t>(index)].right = static_cast<int>(nodes.size());
+  build_range(context, middle, end, nodes);
+}
+
+// Ranges of at least this many triangles build their two children as parallel tasks.
+constexpr int kParallelBuildFaces = 4096;
+
+// build_range with the children of large ranges built on TBB tasks into vectors of their own, then joined in
+// pre-order: the same tree as build_range (each range is split the same way whichever thread splits it).
+void build_range_parallel(BuildContext& context, int begin, int end, std::vector<BvhNode>& nodes) {
+  if (end - begin < kParallelBuildFaces || end - begin <= context.max_leaf) {
+    build_range(context, begin, end, nodes);
+    return;
+  }
+  const int index = static_cast<int>(nodes.size());
+  nodes.push_back(BvhNode{-1, begin, end});
+  const int middle = split_range(context, begin, end);
+  std::vector<BvhNode> left, right;
+  tbb::parallel_invoke([&] { build_range_parallel(context, begin, middle, left); },
+                       [&] { build_range_parallel(context, middle, end, right); });
+  const auto append = [&nodes](const std::vector<BvhNode>& subtree) {
+    const int offset = static_cast<int>(nodes.size());
+    for (BvhNode node : subtree) {
+      if (!node.is_leaf()) node.right += offset;
+      nodes.push_back(node);
+    }
+  };
+  append(left);
+  nodes[static_cast<std::size_t>(index)].right = static_cast<int>(nodes.size());
+  append(right);
 }
 
 // Groups `owner`-indexed primitives by the tree position of their owner: a counting sort into owned/offset.
@@ -163,24 +206,29 @@ Bvh::Bvh(const BvhSettings& settings) : settings_(settings) {
 void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Vertices& start, const Vertices& end) {
   check_vertex_boxes(topology, boxes);
   const int face_count = topology.face_count();
-  face_order_.resize(face_count);
-  std::iota(face_order_.begin(), face_order_.end(), 0);
-  std::vector<FlatBox> face_boxes(face_count);
-  std::vector<Eigen::Vector3d> centroids(face_count);
+  std::vector<BuildItem> items(static_cast<std::size_t>(face_count));
   for (int f = 0; f < face_count; ++f) {
-    FlatBox& b = face_boxes[f];
+    BuildItem& item = items[static_cast<std::size_t>(f)];
+    FlatBox& b = item.box;
     b = boxes.vertices[topology.faces(f, 0)];
     b.expand(boxes.vertices[topology.faces(f, 1)]);
     b.expand(boxes.vertices[topology.faces(f, 2)]);
-    centroids[f] = Eigen::Vector3d(b.min[0] + b.max[0], b.min[1] + b.max[1], b.min[2] + b.max[2]);
-    if (!centroids[f].allFinite()) {
+    item.centroid = Eigen::Vector3d(b.min[0] + b.max[0], b.min[1] + b.max[1], b.min[2] + b.max[2]);
+    item.face = f;
+    if (!item.centroid.allFinite()) {
       throw std::invalid_argument("bvh: face " + std::to_string(f) + " has a NaN or infinite box");
     }
   }
   nodes_.clear();
   nodes_.reserve(2 * static_cast<std::size_t>(face_count) / settings_.max_leaf_faces + 1);
-  BuildContext context{face_order_, centroids, face_boxes, nodes_, settings_.max_leaf_faces};
-  build_range(context, 0, face_count);
+  BuildContext context{items, settings_.max_leaf_faces};
+  if (settings_.parallel) {
+    build_range_parallel(context, 0, face_count, nodes_);
+  } else {
+    build_range(context, 0, face_count, nodes_);
+  }
+  face_order_.resize(static_cast<std::size_t>(face_count));
+  for (int p = 0; p < face_count; ++p) face_order_[static_cast<std::size_t>(p)] = items[static_cast<std::size_t>(p)].face;
 
   std::vector<int> position(face_count);
   for (int i = 0; i < face_count; ++i) position[face_order_[i]] = i;

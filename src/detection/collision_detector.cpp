@@ -43,6 +43,7 @@ broadphase::BvhSettings bvh_settings(const DetectorSettings& settings, bool obst
   broadphase::BvhSettings s;
   s.max_leaf_faces = settings.max_leaf_faces;
   s.rebuild_ratio = settings.rebuild_ratio;
+  s.parallel = settings.parallel;
   switch (settings.hierarchy) {
     case HierarchyKind::SphereRootAabb: s.volume = broadphase::VolumeKind::Sphere; break;
     case HierarchyKind::Aabb: s.volume = broadphase::VolumeKind::Aabb; break;

@@ -29,6 +29,8 @@ struct BvhSettings {
   /// of the box surface area, or of 4 r^2 for spheres) exceeds `rebuild_ratio` times its value right after the last
   /// build. 0 rebuilds every step; infinity never rebuilds.
   double rebuild_ratio = 2.0;
+  /// Build the subtrees of large hierarchies on TBB threads (the tree is the same either way).
+  bool parallel = true;
 };
 
 /// One node: its triangles are face_order[face_begin, face_end); the left child is the next node, the right child is
