@@ -312,25 +312,40 @@ void Bvh::check_vertex_boxes(const BodyTopology& topology, const SweptBoxes& box
 // vertex boxes, straight in tree order.
 void Bvh::refit(const SweptBoxes& boxes) {
   const FlatBox* vertex_boxes = boxes.vertices.data();
-  ordered_face_boxes_.resize(face_order_.size());
-  for (std::size_t p = 0; p < face_order_.size(); ++p) {
-    const int* f = ordered_faces_.data() + 3 * p;
-    FlatBox b = vertex_boxes[f[0]];
-    b.expand(vertex_boxes[f[1]]);
-    b.expand(vertex_boxes[f[2]]);
-    ordered_face_boxes_[p] = b;
+  const auto face_boxes = [&] {
+    ordered_face_boxes_.resize(face_order_.size());
+    for (std::size_t p = 0; p < face_order_.size(); ++p) {
+      const int* f = ordered_faces_.data() + 3 * p;
+      FlatBox b = vertex_boxes[f[0]];
+      b.expand(vertex_boxes[f[1]]);
+      b.expand(vertex_boxes[f[2]]);
+      ordered_face_boxes_[p] = b;
+    }
+    packed_face_boxes_.assign(ordered_face_boxes_);
+  };
+  const auto vertex_boxes_in_order = [&] {
+    ordered_vertex_boxes_.resize(owned_vertices_.size());
+    for (std::size_t i = 0; i < owned_vertices_.size(); ++i) ordered_vertex_boxes_[i] = vertex_boxes[owned_vertices_[i]];
+    packed_vertex_boxes_.assign(ordered_vertex_boxes_);
+  };
+  const auto edge_boxes = [&] {
+    ordered_edge_boxes_.resize(owned_edges_.size());
+    for (std::size_t i = 0; i < owned_edges_.size(); ++i) {
+      FlatBox b = vertex_boxes[ordered_edges_[2 * i]];
+      b.expand(vertex_boxes[ordered_edges_[2 * i + 1]]);
+      ordered_edge_boxes_[i] = b;
+    }
+    packed_edge_boxes_.assign(ordered_edge_boxes_);
+  };
+  // The three kinds are independent: large bodies fill them on parallel tasks (the first fill of a body also touches
+  // its fresh memory).
+  if (settings_.parallel && static_cast<int>(face_order_.size()) >= kParallelBuildFaces) {
+    tbb::parallel_invoke(face_boxes, vertex_boxes_in_order, edge_boxes);
+  } else {
+    face_boxes();
+    vertex_boxes_in_order();
+    edge_boxes();
   }
-  ordered_vertex_boxes_.resize(owned_vertices_.size());
-  for (std::size_t i = 0; i < owned_vertices_.size(); ++i) ordered_vertex_boxes_[i] = vertex_boxes[owned_vertices_[i]];
-  ordered_edge_boxes_.resize(owned_edges_.size());
-  for (std::size_t i = 0; i < owned_edges_.size(); ++i) {
-    FlatBox b = vertex_boxes[ordered_edges_[2 * i]];
-    b.expand(vertex_boxes[ordered_edges_[2 * i + 1]]);
-    ordered_edge_boxes_[i] = b;
-  }
-  packed_face_boxes_.assign(ordered_face_boxes_);
-  packed_vertex_boxes_.assign(ordered_vertex_boxes_);
-  packed_edge_boxes_.assign(ordered_edge_boxes_);
   const int node_count = static_cast<int>(nodes_.size());
   looseness_ = 0.0;
   if (settings_.volume == VolumeKind::Obb) {

@@ -1,5 +1,5 @@
-// Bvh::build on TBB tasks (BvhSettings::parallel) against the serial build: the same tree, triangle order, owned
-// primitives, boxes and volumes, bit for bit, on meshes large enough for the parallel split to run.
+// Bvh::build and its refit on TBB tasks (BvhSettings::parallel) against the serial ones: the same tree, triangle
+// order, owned primitives, boxes, packed boxes and volumes, bit for bit, on meshes large enough for the parallel split to run.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -20,6 +20,15 @@ namespace {
 template <class T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+bool same_packed(const PackedBoxes& a, const PackedBoxes& b) {
+  if (a.size() != b.size()) return false;
+  for (int j = 0; j < a.size(); ++j) {
+    const PackedBox pa = a.at(j), pb = b.at(j);
+    if (std::memcmp(&pa, &pb, sizeof pa) != 0) return false;
+  }
+  return true;
 }
 
 // Builds `mesh` moving to `end` serially and in parallel with `volume` nodes and checks both hierarchies are equal.
@@ -50,6 +59,12 @@ void check_parallel_equals_serial(const TriangleMesh& mesh, const Vertices& end,
   CHECK(serial.owned_edges() == parallel.owned_edges());
   CHECK(same_bits(serial.boxes(), parallel.boxes()));
   CHECK(same_bits(serial.ordered_face_boxes(), parallel.ordered_face_boxes()));
+  CHECK(same_bits(serial.ordered_vertex_boxes(), parallel.ordered_vertex_boxes()));
+  CHECK(same_bits(serial.ordered_edge_boxes(), parallel.ordered_edge_boxes()));
+  CHECK(same_packed(serial.packed_face_boxes(), parallel.packed_face_boxes()));
+  CHECK(same_packed(serial.packed_vertex_boxes(), parallel.packed_vertex_boxes()));
+  CHECK(same_packed(serial.packed_edge_boxes(), parallel.packed_edge_boxes()));
+  CHECK(same_packed(serial.packed_node_boxes(), parallel.packed_node_boxes()));
   CHECK(serial.looseness() == parallel.looseness());
   REQUIRE(serial.spheres().size() == parallel.spheres().size());
   for (std::size_t i = 0; i < serial.spheres().size(); ++i) {
