@@ -157,6 +157,10 @@ void build_range(BuildContext& context, int begin, int end, std::vector<BvhNode>
 // Ranges of at least this many triangles build their two children as parallel tasks.
 constexpr int kParallelBuildFaces = 4096;
 
+// Bodies of at least this many triangles fill their boxes in tree order on parallel tasks in refit(): below it the
+// tasks cost about what they save.
+constexpr int kParallelRefitFaces = 1 << 15;
+
 // build_range with the children of large ranges built on TBB tasks into vectors of their own, then joined in
 // pre-order: the same tree as build_range (each range is split the same way whichever thread splits it).
 void build_range_parallel(BuildContext& context, int begin, int end, std::vector<BvhNode>& nodes) {
@@ -339,7 +343,7 @@ void Bvh::refit(const SweptBoxes& boxes) {
   };
   // The three kinds are independent: large bodies fill them on parallel tasks (the first fill of a body also touches
   // its fresh memory).
-  if (settings_.parallel && static_cast<int>(face_order_.size()) >= kParallelBuildFaces) {
+  if (settings_.parallel && static_cast<int>(face_order_.size()) >= kParallelRefitFaces) {
     tbb::parallel_invoke(face_boxes, vertex_boxes_in_order, edge_boxes);
   } else {
     face_boxes();
