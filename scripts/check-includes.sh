@@ -2,8 +2,9 @@
 # Checks the library's area graph: every #include "..." in src/<area>/ and include/clothcd/<area>/ may name a public
 # header of its own area or of a lower one, and a private header (src/<area>/...) of its own area only.
 # Order, lowest first: support (include/clothcd/*.hpp) < mesh < geometry, render < broadphase < ccd < detection <
-# simulation < learning (the pair network plugs in above the detector). Known exceptions still to remove are listed
-# below with the reason; anything else fails. The umbrella header include/clothcd/clothcd.hpp is above them all. Usage: scripts/check-includes.sh [SOURCE_DIR]
+# simulation < learning (the pair network plugs into the detector from above, as its PairCuller, and dataset generation
+# drives detectors). Any other include fails. The umbrella header include/clothcd/clothcd.hpp is above them all.
+# Usage: scripts/check-includes.sh [SOURCE_DIR]
 set -euo pipefail
 root="${1:-$(cd "$(dirname "$0")/.." && pwd)}"
 cd "$root"
@@ -21,13 +22,6 @@ rank() {
     *) echo "unknown area '$1'" >&2; exit 2 ;;
   esac
 }
-
-# "file -> included header" pairs allowed for now, with why.
-known_exceptions=(
-  # The Network culling mode: the detector builds the learned culler itself (learning below the detector).
-  "include/clothcd/detection/network_culling.hpp -> clothcd/learning/pair_classifier.hpp"
-  "include/clothcd/detection/network_culling.hpp -> clothcd/learning/pair_features.hpp"
-)
 
 failures=0
 while IFS= read -r file; do
@@ -56,9 +50,6 @@ while IFS= read -r file; do
     else
       continue  # a header beside the file
     fi
-    for exception in "${known_exceptions[@]}"; do
-      [[ "$file -> $header" == "$exception" ]] && continue 2
-    done
     if ((private)) && [[ "$target" != "$area" ]]; then
       echo "$file: includes $header, a private header of $target" >&2
       failures=$((failures + 1))

@@ -11,7 +11,7 @@
 #include "../suite/charts.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/learning/network_culler.hpp"
 
 namespace clothcd::bench {
 namespace {
@@ -26,7 +26,7 @@ struct ModeRow {
 
 // The batch (cull, then the narrow phase on the kept queries), best of `repeat`; then one query at a time (median).
 ModeRow measure(const std::vector<ccd::QueryRecord>& records, const std::string& kind, const std::string& mode,
-                bool exact, int repeat, NetworkCuller* network) {
+                bool exact, int repeat, learning::NetworkCuller* network) {
   static const std::vector<std::pair<std::string, ccd::CcdFilter>> kFilters{
       {"none", ccd::CcdFilter::None},
       {"nonpenetration", ccd::CcdFilter::NonPenetration},
@@ -90,12 +90,12 @@ SectionReport run_ccd(const BenchContext& context) {
             {}};
   context.progress("1/3 reading " + context.ccd_queries->string());
   const std::vector<ccd::QueryRecord> all = ccd::read_queries(context.ccd_queries->string());
-  std::unique_ptr<NetworkCuller> network;
+  std::unique_ptr<learning::NetworkCuller> network;
   std::string network_note;
   if (context.network_model_dir.empty()) {
     network_note = "No pair network was found, so the network row is missing.";
   } else {
-    network = std::make_unique<NetworkCuller>(context.network_model_dir.string());
+    network = std::make_unique<learning::NetworkCuller>(context.network_model_dir.string());
     network_note = "Network: " + context.network_model_dir.string() +
                    " behind the detector's safety rule (its drops are confirmed by the combined filters).";
   }

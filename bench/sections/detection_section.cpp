@@ -15,6 +15,7 @@
 #include "../suite/draped_frames.hpp"
 #include "../suite/fcl_peer.hpp"
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/simulation/simulator.hpp"
 
 namespace clothcd::bench {
@@ -55,7 +56,7 @@ DetectorSettings detector_settings(const Method& method, const BenchContext& con
   settings.thickness = kThickness;
   settings.parallel = false;
   settings.self_collision = self_collision;
-  settings.model_path = context.network_model_dir.string();
+  learning::attach_network_culler(settings, context.network_model_dir.string());
   return settings;
 }
 

@@ -15,7 +15,7 @@
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/learning/model_card.hpp"
 #include "clothcd/learning/pair_classifier.hpp"
@@ -103,7 +103,7 @@ std::array<MethodResult, kMethodCount> measure(const learning::GeneratedDataset&
   for (std::size_t i = 0; i < queries.size(); ++i) keep[i] = probability[i] < threshold ? 0 : 1;
   count_removed(keep, exact, results[3]);
 
-  NetworkCuller culler(model_dir);
+  learning::NetworkCuller culler(model_dir);
   results[4].ns_per_pair = 1e6 * median_ms(runs, [&] { culler.cull(queries, settings, false, keep); }) / n;
   count_removed(keep, exact, results[4]);
   return results;

@@ -18,7 +18,7 @@
 
 #include "bench_section.hpp"
 #include "bench_util.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/model_catalog.hpp"
 #include "machine_info.hpp"
 
@@ -49,7 +49,7 @@ fs::path default_network(const fs::path& repository) {
   if (!repository.empty() && fs::is_directory(repository / "models" / "default", error))
     return repository / "models" / "default";
   try {
-    return clothcd::default_network_model_dir();
+    return clothcd::learning::default_network_model_dir();
   } catch (const std::exception&) {
     return {};
   }

@@ -17,7 +17,7 @@
 #include "clothcd/ccd/query_file.hpp"
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/detection/pair_culler.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/geometry/convex_hull.hpp"
 #include "clothcd/geometry/hausdorff.hpp"
@@ -48,3 +48,4 @@
 #include "clothcd/learning/pair_features.hpp"
 #include "clothcd/learning/pair_classifier.hpp"
 #include "clothcd/learning/model_card.hpp"
+#include "clothcd/learning/network_culler.hpp"

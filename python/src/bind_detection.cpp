@@ -10,6 +10,7 @@
 #include "bindings.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/learning/network_culler.hpp"
 
 namespace clothcd::python {
 namespace {
@@ -94,12 +95,12 @@ void bind_detection(nb::module_& m) {
             settings.culling = culling_mode(culling);
             settings.thickness = thickness;
             settings.self_collision = self_collision;
-            settings.model_path = model_path;
             settings.max_leaf_faces = max_leaf_faces;
             settings.parallel = parallel;
             settings.reuse_unchanged = reuse_unchanged;
             settings.projection_normals = projection_normals;
             settings.decide_exactly = decide_exactly;
+            learning::attach_network_culler(settings, model_path);
             new (self) PyDetector{CollisionDetector(to_faces(faces, "faces"), vertex_count, settings), {}, {}};
           },
           nb::arg("faces"), nb::arg("vertex_count"), nb::arg("hierarchy"), nb::arg("culling"), nb::arg("thickness"),

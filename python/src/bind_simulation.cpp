@@ -6,6 +6,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/simulation/scene.hpp"
 #include "clothcd/simulation/simulator.hpp"
 
@@ -22,7 +23,6 @@ std::vector<nb::ndarray<nb::numpy, double>> run(const simulation::Scene& scene, 
   simulation::SimulationSettings settings;
   settings.dt = dt;
   settings.response.thickness = thickness;
-  settings.detector.model_path = model_path;
   if (culling == "filters") {
     settings.detector.culling = CullingMode::Filters;
   } else if (culling == "network") {
@@ -32,6 +32,7 @@ std::vector<nb::ndarray<nb::numpy, double>> run(const simulation::Scene& scene, 
   } else {
     throw std::invalid_argument("simulate: unknown culling '" + culling + "' (filters, network, none)");
   }
+  learning::attach_network_culler(settings.detector, model_path);
   std::vector<Vertices> frames;
   {
     nb::gil_scoped_release release;

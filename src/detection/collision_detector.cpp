@@ -1,7 +1,7 @@
 // The detector of a simulation step (Jin et al., section 3): swept boxes and hierarchy refit (section 3.2), candidate
 // search of cloth vs obstacles and cloth vs itself, culling by the algebraic non-penetration and spatial projection
-// filters (sections 2.2, 2.3) or by the pair network behind the filters (section 3.3), then the exact-safe continuous
-// collision test of every surviving pair. The candidates are not stored: each search thread culls and tests them block
+// filters (sections 2.2, 2.3) or by a culler such as the pair network behind the filters (section 3.3), then the
+// exact-safe continuous collision test of every surviving pair. The candidates are not stored: each search thread culls and tests them block
 // by block as it finds them (pair_pipeline.hpp), and only the collisions are kept.
 #include "clothcd/detection/collision_detector.hpp"
 
@@ -17,7 +17,7 @@
 #include "clothcd/broadphase/swept_boxes.hpp"
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/detection/pair_culler.hpp"
 #include "pair_pipeline.hpp"
 #include "parallel_loop.hpp"
 #include "radix_sort.hpp"
@@ -108,7 +108,7 @@ bool has_moved_vertex(const Collision& c, const std::vector<std::uint8_t>& moved
 struct CollisionDetector::Impl {
   DetectorSettings settings;
   ccd::CcdFilter filter = ccd::CcdFilter::None;
-  std::unique_ptr<NetworkCuller> network;  // CullingMode::Network only
+  std::shared_ptr<const PairCuller> culler;  // CullingMode::Network only
   Body cloth;
   std::vector<Body> obstacles;
   std::unique_ptr<detail::PairPipeline> pipeline;  // culling and exact test of the candidates as they are found
@@ -135,10 +135,10 @@ struct CollisionDetector::Impl {
   }
 
   // True when this call repeats the last one's step with few cloth vertices moved (then `moved` flags them): same
-  // start positions, obstacles unchanged since (none stale), reuse enabled and no network. A moving obstacle is stale
+  // start positions, obstacles unchanged since (none stale), reuse enabled and no culler. A moving obstacle is stale
   // again after every call, so its steps are always searched in full.
   bool can_reuse(const Vertices& start, const Vertices& end) {
-    if (!has_previous || !settings.reuse_unchanged || network) return false;
+    if (!has_previous || !settings.reuse_unchanged || culler) return false;
     for (const Body& o : obstacles) {
       if (o.stale) return false;
     }
@@ -185,7 +185,7 @@ struct CollisionDetector::Impl {
     pipeline_settings.filter = filter;
     pipeline_settings.ccd = ccd::CcdSettings{settings.thickness, settings.decide_exactly};
     pipeline_settings.projection = ccd::ProjectionFilterOptions{settings.projection_normals};
-    pipeline_settings.network = network.get();
+    pipeline_settings.culler = culler.get();
     pipeline_settings.exact = exact;
     pipeline->begin(frames, keys, pipeline_settings);
 
@@ -235,7 +235,13 @@ CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_
                                 std::to_string(kMaxBlockPairs));
   }
   impl_->filter = ccd_filter(settings.culling);
-  if (settings.culling == CullingMode::Network) impl_->network = std::make_unique<NetworkCuller>(settings.model_path);
+  if (settings.culling == CullingMode::Network) {
+    if (!settings.culler) {
+      throw std::invalid_argument("collision detector: Network culling needs DetectorSettings::culler (e.g. "
+                                  "learning::load_network_culler)");
+    }
+    impl_->culler = settings.culler;
+  }
   impl_->settings = settings;
   impl_->pipeline = std::make_unique<detail::PairPipeline>(settings.block_pairs);
   impl_->cloth.topology = broadphase::build_body_topology(cloth_faces, cloth_vertex_count);
@@ -328,11 +334,11 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
   d.stats.culling_ms = scale * (replaced.culling_ms + found.culling_ms);
   d.stats.exact_ms = scale * found.exact_ms + collect_ms;
   d.stats.traversal_ms = std::max(0.0, wall_ms - scale * threads_ms);
-  d.stats.network_ms = scale * found.network_ms;
-  d.stats.network_filters_ms = scale * found.network_filters_ms;
-  d.stats.network_dropped = found.network_dropped;
-  d.stats.network_overruled = found.network_overruled;
-  d.stats.network_kept = found.network_kept;
+  d.stats.network_ms = scale * found.culler.culler_ms;
+  d.stats.network_filters_ms = scale * found.culler.filters_ms;
+  d.stats.network_dropped = found.culler.dropped;
+  d.stats.network_overruled = found.culler.overruled;
+  d.stats.network_kept = found.culler.kept;
 
   // A re-test's counts: the last call's, with the replaced pairs' taken out and the new ones' put in.
   const long previous = d.counts.vertex_face + d.counts.edge_edge;
@@ -345,7 +351,7 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
   d.stats.collisions = static_cast<long>(d.collisions.size());
   d.stats.reused = reuse ? previous - (replaced.vertex_face + replaced.edge_edge) : 0;
 
-  if (d.settings.reuse_unchanged && !d.network) {
+  if (d.settings.reuse_unchanged && !d.culler) {
     d.previous_start = start;
     d.previous_end = end;
     d.has_previous = true;

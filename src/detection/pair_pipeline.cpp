@@ -24,12 +24,8 @@ void PipelineCounts::add(const PipelineCounts& o) {
   vertex_face += o.vertex_face;
   edge_edge += o.edge_edge;
   culled += o.culled;
-  network_dropped += o.network_dropped;
-  network_overruled += o.network_overruled;
-  network_kept += o.network_kept;
+  culler.add(o.culler);
   culling_ms += o.culling_ms;
-  network_ms += o.network_ms;
-  network_filters_ms += o.network_filters_ms;
   exact_ms += o.exact_ms;
 }
 
@@ -89,63 +85,32 @@ void PairPipeline::consume(const broadphase::CandidateSet& chunk) {
   w.counts.edge_edge += static_cast<long>(chunk.edge_edge.size());
 }
 
-int PairPipeline::cull_with_network(Worker& w) const {
-  using learning::PairDecision;
-  ccd::PairBlock& block = w.block;
-  const PipelineSettings& s = *settings_;
-  const int n = block.size();
-  auto t = StageClock::now();
-  w.queries.resize(static_cast<std::size_t>(n));
-  w.decisions.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) w.queries[static_cast<std::size_t>(i)] = block.query(i);
-  s.network->decide(w.queries.data(), static_cast<std::size_t>(n), w.features, w.decisions.data());
-  w.counts.network_ms += milliseconds_since(t);
-
-  t = StageClock::now();
-  // Order the pairs Drop, Check, Keep (the order within a block does not matter: collisions are sorted by key).
-  auto move_front = [&](PairDecision wanted, int first) {
-    int next = first;
-    for (int i = first; i < n; ++i) {
-      if (w.decisions[static_cast<std::size_t>(i)] != wanted) continue;
-      block.swap_pairs(i, next);
-      std::swap(w.decisions[static_cast<std::size_t>(i)], w.decisions[static_cast<std::size_t>(next)]);
-      ++next;
-    }
-    return next - first;
-  };
-  const int drops = move_front(PairDecision::Drop, 0);
-  const int checks = move_front(PairDecision::Check, drops);
-  // The combined filters confirm or overrule the drops, then check the Check pairs; Keep pairs skip them.
-  const ccd::CcdFilter combined = ccd::CcdFilter::Combined;
-  const int drops_left = ccd::cull_pair_block(block, drops, combined, s.ccd, s.projection, w.culled);
-  // The Check pairs now follow the drops left; bring them to the front (the block's order does not matter).
-  for (int j = 0; j < checks; ++j) block.swap_pairs(j, drops_left + j);
-  ccd::cull_pair_block(block, checks, combined, s.ccd, s.projection, w.culled);
-  w.counts.network_filters_ms += milliseconds_since(t);
-  w.counts.network_dropped += drops - drops_left;
-  w.counts.network_overruled += drops_left;
-  w.counts.network_kept += n - drops - checks;
-  return block.size();
-}
-
 void PairPipeline::run_block(Worker& w) const {
   ccd::PairBlock& block = w.block;
   const int n = block.size();
   if (n == 0) return;
   const PipelineSettings& s = *settings_;
   auto t = StageClock::now();
-  const int survivors = s.network != nullptr
-                            ? cull_with_network(w)
-                            : ccd::cull_pair_block(block, n, s.filter, s.ccd, s.projection, w.culled);
+  // Survivors [0, filtered) passed the filters `applied`; the culler's Keep pairs behind them met no filter.
+  int filtered = 0, survivors = 0;
+  ccd::CcdFilter applied = s.filter;
+  if (s.culler != nullptr) {
+    const CullerSurvivors left = cull_with_culler(*s.culler, block, s.ccd, s.projection, w.culler, w.counts.culler);
+    filtered = left.filtered;
+    survivors = left.filtered + left.kept;
+    applied = ccd::CcdFilter::Combined;
+  } else {
+    filtered = survivors = ccd::cull_pair_block(block, n, s.filter, s.ccd, s.projection, w.culled);
+  }
   w.counts.culled += n - survivors;
   w.counts.culling_ms += milliseconds_since(t);
   if (s.exact) {
     t = StageClock::now();
-    // The filters' tests are not repeated (the network's Keep pairs met none, so nothing is skipped there).
-    const ccd::CcdFilter applied = s.network != nullptr ? ccd::CcdFilter::None : s.filter;
     std::vector<KeyedCollision>& hits = block.kind() == PairKind::VertexFace ? w.vertex_face : w.edge_edge;
     for (int i = 0; i < survivors; ++i) {
-      const ccd::CcdResult r = ccd::continuous_collision_after_filter(block.query(i), s.ccd, applied);
+      // The filters' tests are not repeated on the pairs that passed them.
+      const ccd::CcdResult r =
+          ccd::continuous_collision_after_filter(block.query(i), s.ccd, i < filtered ? applied : ccd::CcdFilter::None);
       if (!r.hit) continue;
       KeyedCollision& h = hits.emplace_back();
       h.key = block.tag(i);

@@ -1,7 +1,7 @@
 #pragma once
 // The detector's narrow phase as a candidate sink (internal): each thread turns the candidate chunks the broad phase
-// hands it into pair blocks (vertices, canonical sort key, positions), culls a block (the filters, or the network
-// with the filters behind it), runs the exact test on the survivors while they are in cache, keeps only the
+// hands it into pair blocks (vertices, canonical sort key, positions), culls a block (the filters, or a culler with
+// the filters behind it), runs the exact test on the survivors while they are in cache, keeps only the
 // collisions and reuses the block. Nothing proportional to the number of candidates is stored.
 #include <tbb/enumerable_thread_specific.h>
 
@@ -14,7 +14,7 @@
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/pair_block.hpp"
 #include "clothcd/detection/collision.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/detection/pair_culler.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::detail {
@@ -56,10 +56,10 @@ struct KeyedCollision {
 
 /// How the pipeline treats the pairs of one search.
 struct PipelineSettings {
-  ccd::CcdFilter filter = ccd::CcdFilter::Combined;  ///< Culling without a network.
+  ccd::CcdFilter filter = ccd::CcdFilter::Combined;  ///< Culling without a culler.
   ccd::CcdSettings ccd;                              ///< Thickness and exactness.
   ccd::ProjectionFilterOptions projection;           ///< Directions of the projection filter.
-  const NetworkCuller* network = nullptr;            ///< When set: the network, with the combined filters behind it.
+  const PairCuller* culler = nullptr;                ///< When set: the culler, with the combined filters behind it.
   bool exact = true;  ///< False: only count the candidates and the culled pairs (no exact test, no collisions).
 };
 
@@ -68,13 +68,9 @@ struct PipelineCounts {
   long vertex_face = 0;        ///< Vertex-face candidates.
   long edge_edge = 0;          ///< Edge-edge candidates.
   long culled = 0;             ///< Candidates the culling removed.
-  long network_dropped = 0;    ///< See DetectionStats.
-  long network_overruled = 0;  ///< See DetectionStats.
-  long network_kept = 0;       ///< See DetectionStats.
-  double culling_ms = 0;       ///< Culling, the network's part included.
-  double network_ms = 0;       ///< Features and inference.
-  double network_filters_ms = 0;  ///< The filters behind the network.
-  double exact_ms = 0;            ///< Exact tests.
+  CullerCounts culler;         ///< Network mode: the culler's verdicts and the filters behind it.
+  double culling_ms = 0;       ///< Culling, the culler's part included.
+  double exact_ms = 0;         ///< Exact tests.
 
   /// Adds the counts and times of `o`.
   void add(const PipelineCounts& o);
@@ -102,15 +98,12 @@ class PairPipeline final : public broadphase::CandidateSink {
     explicit Worker(int block_pairs) : block(block_pairs) {}
     ccd::PairBlock block;
     std::vector<std::uint8_t> culled;                     // cull_pair_block's scratch
-    std::vector<ccd::CcdQuery> queries;                   // network mode: the block's queries
-    learning::PairFeatureBatch features;                  // network mode: their features
-    std::vector<learning::PairDecision> decisions;        // network mode: the network's decisions
+    CullerScratch culler;                                 // network mode: cull_with_culler's scratch
     std::vector<KeyedCollision> vertex_face, edge_edge;  // collisions found
     PipelineCounts counts;
   };
 
   void run_block(Worker& w) const;
-  int cull_with_network(Worker& w) const;
 
   const std::vector<BodyFrames>* bodies_ = nullptr;
   const PairKeys* keys_ = nullptr;

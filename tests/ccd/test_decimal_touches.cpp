@@ -12,7 +12,7 @@
 #include "ccd/ccd_test_support.hpp"
 #include "ccd/decimal_touches.hpp"
 #include "ccd/projection_block.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/learning/network_culler.hpp"
 
 using clothcd::test::decimal_thick_touches;
 using clothcd::test::decimal_touches;
@@ -162,7 +162,7 @@ TEST_CASE("decimal touches: exact and near touches with decimal coordinates agai
   }
 
   SECTION("the network culler culls no reference collision, even told to drop every pair") {
-    clothcd::NetworkCuller culler;
+    clothcd::learning::NetworkCuller culler;
     for (const bool reckless : {false, true}) {
       if (reckless) culler.set_operating_point({1.0, 1.0});  // drops every pair it is not certain to keep
       for (const bool normals : {false, true}) {

@@ -12,6 +12,7 @@
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using namespace clothcd;
@@ -113,6 +114,7 @@ TEST_CASE("detector finds exactly the all-pairs exact CCD collisions", "[detecti
   settings.hierarchy = hierarchy;
   settings.culling = culling;
   settings.thickness = thickness;
+  learning::attach_network_culler(settings, "");
   CollisionDetector detector(cloth.faces, static_cast<int>(cloth.vertex_count()), settings);
   CHECK(detector.add_obstacle(obstacle) == 1);
   const std::vector<Collision>& found = detector.detect(cloth.vertices, end);
@@ -181,6 +183,7 @@ TEST_CASE("detector output and counts do not depend on the block size", "[detect
       settings.thickness = thickness;
       settings.block_pairs = block_pairs;
       settings.parallel = parallel;
+      learning::attach_network_culler(settings, "");
       CollisionDetector detector(cloth.faces, static_cast<int>(cloth.vertex_count()), settings);
       detector.add_obstacle(obstacle);
       const std::vector<Collision> found = detector.detect(cloth.vertices, end);
@@ -236,8 +239,7 @@ TEST_CASE("detector rejects bad input", "[detection][errors]") {
   const int n = static_cast<int>(cloth.vertex_count());
   DetectorSettings network;
   network.culling = CullingMode::Network;
-  network.model_path = "/nonexistent/model";
-  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, network), Catch::Contains("/nonexistent/model"));
+  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, network), Catch::Contains("needs DetectorSettings::culler"));
   DetectorSettings negative;
   negative.thickness = -1.0;
   CHECK_THROWS_AS(CollisionDetector(cloth.faces, n, negative), std::invalid_argument);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using namespace clothcd;
@@ -130,6 +131,7 @@ TEST_CASE("a moved obstacle or the network mode turns reuse off", "[detection][r
 
   DetectorSettings network_settings;
   network_settings.culling = CullingMode::Network;
+  learning::attach_network_culler(network_settings, "");
   CollisionDetector network(cloth.faces, static_cast<int>(cloth.vertex_count()), network_settings);
   network.add_obstacle(plate);
   for (int call = 0; call < 2; ++call) {

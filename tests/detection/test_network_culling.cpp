@@ -1,6 +1,7 @@
 // Network culling in the CCD stage: the detector in Network mode finds exactly the collisions of Filters and None
-// modes; the culled set is always inside the combined filters' (even when the network is told to drop everything);
-// bad models are clear errors; `clothcd ccd --filter network` has no false negatives.
+// modes, with the pair network or any other PairCuller (one that drops or keeps everything included); the culled set
+// is always inside the combined filters' (even when the network is told to drop everything); bad models are clear
+// errors; `clothcd ccd --filter network` has no false negatives.
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -14,13 +15,30 @@
 #include "../broadphase/broadphase_scenes.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/detection/pair_culler.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "support/test_support.hpp"
 
 using namespace clothcd;
+using learning::default_network_model_dir;
+using learning::NetworkCuller;
+using learning::NetworkCullingStats;
 
 namespace {
+
+// A culler that gives every pair the same verdict.
+class SameVerdict final : public PairCuller {
+ public:
+  explicit SameVerdict(CullVerdict verdict) : verdict_(verdict) {}
+  std::unique_ptr<Scratch> make_scratch() const override { return std::make_unique<Scratch>(); }
+  void cull(const ccd::PairBlock& block, Scratch&, CullVerdict* verdicts) const override {
+    std::fill(verdicts, verdicts + block.size(), verdict_);
+  }
+
+ private:
+  CullVerdict verdict_;
+};
 
 using Key = std::tuple<int, int, int, int, int, int, int, int, int, double>;
 
@@ -73,15 +91,28 @@ TEST_CASE("network culling finds exactly the collisions of the filters and of no
   DetectionStats filters_stats;
   const std::vector<Key> filters = detect_keys(cloth, obstacle, end, settings, &filters_stats);
   settings.culling = CullingMode::Network;
+  settings.culler = learning::load_network_culler();
   DetectionStats network_stats;
   const std::vector<Key> network = detect_keys(cloth, obstacle, end, settings, &network_stats);
   settings.parallel = false;
   const std::vector<Key> serial = detect_keys(cloth, obstacle, end, settings);
+  settings.parallel = true;
+  // Whatever a culler says, the collisions stay the same: the filters confirm its drops.
+  DetectionStats drop_stats, keep_stats;
+  settings.culler = std::make_shared<SameVerdict>(CullVerdict::Drop);
+  const std::vector<Key> drop_all = detect_keys(cloth, obstacle, end, settings, &drop_stats);
+  settings.culler = std::make_shared<SameVerdict>(CullVerdict::Keep);
+  const std::vector<Key> keep_all = detect_keys(cloth, obstacle, end, settings, &keep_stats);
 
   REQUIRE_FALSE(none.empty());
   CHECK(filters == none);
   CHECK(network == none);
   CHECK(serial == network);
+  CHECK(drop_all == none);
+  CHECK(keep_all == none);
+  CHECK(drop_stats.culled == filters_stats.culled);
+  CHECK(drop_stats.network_dropped == filters_stats.culled);
+  CHECK(keep_stats.culled == 0);
   const long candidates = network_stats.candidates_vertex_face + network_stats.candidates_edge_edge;
   CHECK(network_stats.culled <= filters_stats.culled);
   CHECK(network_stats.culled >= network_stats.network_dropped);
@@ -105,6 +136,7 @@ TEST_CASE("network culling on a random triangle soup obstacle (degenerate faces)
   settings.culling = CullingMode::None;
   const std::vector<Key> none = detect_keys(cloth, soup, end, settings);
   settings.culling = CullingMode::Network;
+  settings.culler = learning::load_network_culler();
   CHECK(detect_keys(cloth, soup, end, settings) == none);
   REQUIRE_FALSE(none.empty());
 }
@@ -164,8 +196,9 @@ TEST_CASE("network culling rejects missing and bad models", "[detection][network
   const int n = static_cast<int>(cloth.vertex_count());
   DetectorSettings settings;
   settings.culling = CullingMode::Network;
-  settings.model_path = "/nonexistent/clothcd-model";
-  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, settings), Catch::Contains("/nonexistent/clothcd-model"));
+  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, settings), Catch::Contains("culler"));
+  CHECK_THROWS_WITH(learning::attach_network_culler(settings, "/nonexistent/clothcd-model"),
+                    Catch::Contains("/nonexistent/clothcd-model"));
 
   test::TempDir dir;
   const std::filesystem::path model = dir / "model";
@@ -175,11 +208,10 @@ TEST_CASE("network culling rejects missing and bad models", "[detection][network
   std::stringstream text;
   text << xml.rdbuf();
   test::write_file(model / "network.xml", text.str().substr(0, text.str().size() / 2));
-  settings.model_path = model.string();
-  CHECK_THROWS_AS(CollisionDetector(cloth.faces, n, settings), std::runtime_error);
-  CHECK_THROWS_WITH(CollisionDetector(cloth.faces, n, settings), Catch::Contains("network.xml"));
+  CHECK_THROWS_AS(learning::load_network_culler(model.string()), std::runtime_error);
+  CHECK_THROWS_WITH(learning::load_network_culler(model.string()), Catch::Contains("network.xml"));
 
-  settings.model_path.clear();  // the committed default model
+  learning::attach_network_culler(settings, "");  // the committed default model
   CHECK_NOTHROW(CollisionDetector(cloth.faces, n, settings));
 }
 

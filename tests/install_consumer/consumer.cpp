@@ -31,6 +31,7 @@ int main() {
   for (const clothcd::CullingMode mode : {clothcd::CullingMode::Network, clothcd::CullingMode::Filters}) {
     clothcd::DetectorSettings settings;
     settings.culling = mode;
+    clothcd::learning::attach_network_culler(settings, "");  // the installed default network
     clothcd::CollisionDetector detector(cloth.faces, static_cast<int>(cloth.vertex_count()), settings);
     for (const clothcd::Collision& c : detector.detect(cloth.vertices, end)) {
       if (mode == clothcd::CullingMode::Network) {

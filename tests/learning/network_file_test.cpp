@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/learning/network_weights.hpp"
 #include "clothcd/learning/pair_classifier.hpp"
 #include "learning/opennn_backend.hpp"
@@ -19,7 +19,7 @@ using namespace clothcd::learning;
 namespace {
 
 std::string committed_network() {
-  return (std::filesystem::path(clothcd::default_network_model_dir()) / "network.xml").string();
+  return (std::filesystem::path(clothcd::learning::default_network_model_dir()) / "network.xml").string();
 }
 
 }  // namespace

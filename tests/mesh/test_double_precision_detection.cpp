@@ -1,6 +1,6 @@
 // Detection on meshes read at the file's full double precision: collisions that coordinates rounded to float would
 // miss (or invent) are decided on the file's doubles, and every ground-truth pair of the shared simulation steps is
-// found when that data is present.
+// found, in every culling mode, when that data is present.
 #include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
@@ -10,6 +10,7 @@
 #include <set>
 
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
 #include "support/test_support.hpp"
@@ -21,9 +22,12 @@ using clothcd::MeshFrames;
 using clothcd::PairKind;
 
 /// The collisions clothcd's detector finds between the frames (interval-undecided pairs decided exactly).
-std::vector<clothcd::Collision> detect_exactly(const clothcd::TriangleMesh& start, const clothcd::Vertices& end) {
+std::vector<clothcd::Collision> detect_exactly(const clothcd::TriangleMesh& start, const clothcd::Vertices& end,
+                                               clothcd::CullingMode culling = clothcd::CullingMode::Filters) {
   clothcd::DetectorSettings settings;
   settings.decide_exactly = true;
+  settings.culling = culling;
+  clothcd::learning::attach_network_culler(settings, "");
   clothcd::CollisionDetector detector(start.faces, static_cast<int>(start.vertex_count()), settings);
   return detector.detect(start.vertices, end);
 }
@@ -109,34 +113,40 @@ TEST_CASE("every ground-truth pair of the shared simulation steps is found", "[m
       REQUIRE(bytes.size() >= body + positions->size() * sizeof(double));
       CHECK(std::memcmp(bytes.data() + body, positions->data(), positions->size() * sizeof(double)) == 0);
     }
-    std::set<std::array<int, 4>> found;  // vertex-face: vertex, sorted triangle; edge-edge: two sorted edges, sorted
-    for (const clothcd::Collision& c : detect_exactly(frames.start, frames.end)) {
-      std::array<int, 4> key{c.vertices[0].vertex, c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
-      if (c.kind == PairKind::VertexFace) {
-        std::sort(key.begin() + 1, key.end());
-      } else {
-        if (key[0] > key[1]) std::swap(key[0], key[1]);
-        if (key[2] > key[3]) std::swap(key[2], key[3]);
-        if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
-        key[0] = -1 - key[0];  // edge-edge keys apart from vertex-face ones
+    using clothcd::CullingMode;
+    for (const CullingMode culling : {CullingMode::None, CullingMode::NonPenetration, CullingMode::Projection,
+                                      CullingMode::Filters, CullingMode::Network}) {
+      INFO("culling mode " << static_cast<int>(culling));
+      std::set<std::array<int, 4>> found;  // vertex-face: vertex, sorted triangle; edge-edge: sorted sorted edges
+      for (const clothcd::Collision& c : detect_exactly(frames.start, frames.end, culling)) {
+        std::array<int, 4> key{c.vertices[0].vertex, c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
+        if (c.kind == PairKind::VertexFace) {
+          std::sort(key.begin() + 1, key.end());
+        } else {
+          if (key[0] > key[1]) std::swap(key[0], key[1]);
+          if (key[2] > key[3]) std::swap(key[2], key[3]);
+          if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
+          key[0] = -1 - key[0];  // edge-edge keys apart from vertex-face ones
+        }
+        found.insert(key);
       }
-      found.insert(key);
+      int missed = 0;
+      for (const auto& pair : truth["vf"]) {
+        const int vertex = pair[0].get<int>(), face = pair[1].get<int>();
+        std::array<int, 4> key{vertex, frames.start.faces(face, 0), frames.start.faces(face, 1),
+                               frames.start.faces(face, 2)};
+        std::sort(key.begin() + 1, key.end());
+        missed += found.count(key) == 0;
+      }
+      for (const auto& pair : truth["ee"]) {
+        std::array<int, 4> key{};
+        for (int k = 0; k < 4; ++k) key[k] = pair[k / 2][k % 2].get<int>();
+        if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
+        key[0] = -1 - key[0];
+        missed += found.count(key) == 0;
+      }
+      CHECK(missed == 0);
     }
-    int missed = 0;
-    for (const auto& pair : truth["vf"]) {
-      const int vertex = pair[0].get<int>(), face = pair[1].get<int>();
-      std::array<int, 4> key{vertex, frames.start.faces(face, 0), frames.start.faces(face, 1), frames.start.faces(face, 2)};
-      std::sort(key.begin() + 1, key.end());
-      missed += found.count(key) == 0;
-    }
-    for (const auto& pair : truth["ee"]) {
-      std::array<int, 4> key{};
-      for (int k = 0; k < 4; ++k) key[k] = pair[k / 2][k % 2].get<int>();
-      if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
-      key[0] = -1 - key[0];
-      missed += found.count(key) == 0;
-    }
-    CHECK(missed == 0);
     CHECK(truth["vf"].size() + truth["ee"].size() > 100);
   }
 }

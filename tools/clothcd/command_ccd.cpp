@@ -16,7 +16,7 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
-#include "clothcd/detection/network_culling.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "commands.hpp"
 #include "shared_options.hpp"
 
@@ -53,7 +53,7 @@ struct Summary {
   std::size_t culled_combined = 0;
   double ns_per_query = 0.0;
   bool network = false;
-  NetworkCullingStats network_stats;
+  learning::NetworkCullingStats network_stats;
 };
 
 const char* state_name(ccd::CcdState state) {
@@ -89,7 +89,7 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
     report["culled_combined"] = s.culled_combined;
     report["ns_per_query"] = std::round(s.ns_per_query * 10.0) / 10.0;
     if (s.network) {
-      const NetworkCullingStats& n = s.network_stats;
+      const learning::NetworkCullingStats& n = s.network_stats;
       report["network"] = {{"dropped", n.dropped}, {"overruled", n.overruled}, {"checked", n.checked},
                            {"kept", n.kept},       {"network_ms", n.network_ms}, {"filters_ms", n.filters_ms}};
     }
@@ -115,7 +115,7 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
             << "culled combined:       " << s.culled_combined << "  (" << percent(s.culled_combined) << "%)\n"
             << "ns per query:          " << s.ns_per_query << '\n';
   if (s.network) {
-    const NetworkCullingStats& n = s.network_stats;
+    const learning::NetworkCullingStats& n = s.network_stats;
     std::cout << "network dropped:       " << n.dropped << "  (confirmed by the filters)\n"
               << "network overruled:     " << n.overruled << "  (drops the filters did not confirm: exact CCD)\n"
               << "network checked:       " << n.checked << "  (" << n.filter_culled << " culled by the filters)\n"
@@ -163,7 +163,7 @@ std::size_t redecide_inexact(const std::vector<ccd::QueryRecord>& records, const
   return redecided;
 }
 
-void add_network_stats(const NetworkCullingStats& part, NetworkCullingStats& total) {
+void add_network_stats(const learning::NetworkCullingStats& part, learning::NetworkCullingStats& total) {
   total.dropped += part.dropped;
   total.overruled += part.overruled;
   total.checked += part.checked;
@@ -223,7 +223,7 @@ void run_ccd(const CcdCommandOptions& options) {
   if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness))
     throw std::invalid_argument("--thickness must be a finite number >= 0");
 
-  std::optional<NetworkCuller> culler;
+  std::optional<learning::NetworkCuller> culler;
   if (network) culler.emplace(options.network);
 
   // Listed before the per-query file is created, which may lie in the same folder.

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "commands.hpp"
 #include "output_paths.hpp"
@@ -119,9 +120,9 @@ void run_detect(const DetectOptions& o) {
   check_exact_needs_zero_thickness(o.exact, o.thickness);
   if (!o.out.empty()) check_output_file(o.out, "--out");
   DetectorSettings settings;
-  settings.model_path = o.network;
   settings.hierarchy = hierarchy_named(o.bvh);
   settings.culling = culling_named(o.filter);
+  learning::attach_network_culler(settings, o.network);
   settings.thickness = o.thickness;
   settings.decide_exactly = o.exact;
 

@@ -12,6 +12,7 @@
 
 #include "clothcd/mesh/mesh_io.hpp"
 #include "clothcd/render/rasterizer.hpp"
+#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/simulation/intersection_check.hpp"
 #include "clothcd/simulation/simulator.hpp"
 #include "commands.hpp"
@@ -132,7 +133,7 @@ void run(const SimulateOptions& options) {
   settings.response.contact_reach = options.contact_reach;
   settings.detector.culling = culling_named(options.filter);
   settings.detector.hierarchy = hierarchy_named(options.bvh);
-  settings.detector.model_path = options.network;
+  learning::attach_network_culler(settings.detector, options.network);
   const int steps = options.steps < 0 ? scene.default_steps : options.steps;
   const int frames_every = options.frames_every > 0 ? options.frames_every : std::max(1, steps / 11);
 

@@ -14,13 +14,16 @@
 
 namespace clothcd {
 
+class PairCuller;
+
 /// Which culling runs on candidate pairs before the exact CCD.
 enum class CullingMode {
   None,            ///< Every candidate goes to the exact CCD.
   NonPenetration,  ///< The algebraic (Bernstein) non-penetration filter.
   Projection,      ///< The spatial linear projection filter.
   Filters,         ///< Both filters, cheaper first.
-  /// The learned pair network (see detection/network_culling.hpp): Keep goes to the exact CCD, Check and Drop through
+  /// A culler in front of the filters, given in DetectorSettings::culler (the learned pair network:
+  /// learning::load_network_culler; see detection/pair_culler.hpp): Keep goes to the exact CCD, Check and Drop through
   /// the combined filters as Filters runs them (projection_normals included); a Drop the filters do not confirm goes
   /// to the exact CCD. Culls a subset of Filters.
   Network,
@@ -35,9 +38,9 @@ struct DetectorSettings {
   CullingMode culling = CullingMode::Filters;               ///< Culling before the exact CCD.
   double thickness = 0.0;       ///< Minimum separation (scene units); pairs closer than this count as colliding.
   bool self_collision = true;   ///< Also test the cloth against itself.
-  /// Network model for CullingMode::Network: a model directory (network.xml + card.json) or its network.xml; empty:
-  /// the committed default model, see default_network_model_dir().
-  std::string model_path;
+  /// The culler of CullingMode::Network (required there, unused otherwise), e.g. the pair network of
+  /// learning::load_network_culler. Shared: several detectors may hold the same culler (it is only read).
+  std::shared_ptr<const PairCuller> culler;
   /// Triangles per hierarchy leaf (>= 1; median splits make leaves of between half of it and it). 32 since the leaf
   /// tests take eight primitives at a time (cloth C on the human, cachegrind over 30 frames of whole detection:
   /// 1.28G instructions and 4.2M mispredicted branches against 1.32G and 4.8M with 16, 1.29G and 4.7M with 40).
@@ -76,11 +79,11 @@ struct DetectionStats {
   double traversal_ms = 0;
   double culling_ms = 0;            ///< Time in the culling stage (see traversal_ms).
   double exact_ms = 0;              ///< Time in the exact CCD (see traversal_ms), sorting the collisions included.
-  long network_dropped = 0;         ///< Network mode: pairs the network dropped and the filters confirmed.
+  long network_dropped = 0;         ///< Network mode: pairs the culler dropped and the filters confirmed.
   long network_overruled = 0;       ///< Network mode: drops the filters did not confirm (sent to the exact CCD).
-  long network_kept = 0;            ///< Network mode: pairs the network sent straight to the exact CCD.
-  double network_ms = 0;            ///< Network mode: features and inference (part of culling_ms).
-  double network_filters_ms = 0;    ///< Network mode: the filters behind the network (part of culling_ms).
+  long network_kept = 0;            ///< Network mode: pairs the culler sent straight to the exact CCD.
+  double network_ms = 0;            ///< Network mode: the culler's time (features and inference; part of culling_ms).
+  double network_filters_ms = 0;    ///< Network mode: the filters behind the culler (part of culling_ms).
   int rebuilds = 0;                 ///< Hierarchies rebuilt (not just refitted) in this step.
   long reused = 0;                  ///< Pairs whose culling and CCD answer was kept from the previous call.
 };
@@ -91,8 +94,7 @@ struct DetectionStats {
 class CollisionDetector {
  public:
   /// Takes the cloth's triangles (indices into its `cloth_vertex_count` vertices) and the settings.
-  /// Throws std::invalid_argument on out-of-range indices or an empty cloth; in Network mode loads the model here and
-  /// throws std::runtime_error naming the file when it is missing or bad.
+  /// Throws std::invalid_argument on out-of-range indices, an empty cloth or Network mode without a culler.
   CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings = {});
   ~CollisionDetector();
   CollisionDetector(CollisionDetector&&) noexcept;             ///< Movable.
