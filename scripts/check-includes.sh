@@ -4,7 +4,10 @@
 # Order, lowest first: support (include/clothcd/*.hpp) < mesh < geometry, render < broadphase < ccd < detection <
 # simulation < learning (the pair network plugs into the detector from above, as its PairCuller, and dataset generation
 # drives detectors). Any other include fails. The umbrella header include/clothcd/clothcd.hpp is above them all.
-# Usage: scripts/check-includes.sh [SOURCE_DIR]
+# The private headers of support (src/support/, e.g. the vector layer simd.hpp) serve every area of src/; a public
+# header includes no private header at all. No public header may reach a compiler intrinsics header (immintrin.h,
+# emmintrin.h, arm_neon.h, ...) or name vector-extension types: the SIMD code stays inside src/ (Eigen, a dependency,
+# includes its own). Usage: scripts/check-includes.sh [SOURCE_DIR]
 set -euo pipefail
 root="${1:-$(cd "$(dirname "$0")/.." && pwd)}"
 cd "$root"
@@ -50,7 +53,12 @@ while IFS= read -r file; do
     else
       continue  # a header beside the file
     fi
-    if ((private)) && [[ "$target" != "$area" ]]; then
+    if ((private)) && [[ "$file" == include/* ]]; then
+      echo "$file: includes $header, a private header, from a public header" >&2
+      failures=$((failures + 1))
+    elif ((private)) && [[ "$target" == support ]]; then
+      continue  # support's private headers serve every area
+    elif ((private)) && [[ "$target" != "$area" ]]; then
       echo "$file: includes $header, a private header of $target" >&2
       failures=$((failures + 1))
     elif (($(rank "$target") > $(rank "$area"))); then
@@ -59,6 +67,13 @@ while IFS= read -r file; do
     fi
   done < <(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$file")
 done < <(find src include -name '*.hpp' -o -name '*.cpp' -o -name '*.h' | sort)
+
+# Intrinsics and vector-extension types in public headers (with the check above, no public header reaches one
+# through a header of ours).
+while IFS= read -r hit; do
+  echo "$hit: SIMD intrinsics or vector types in a public header (keep them in src/, see src/support/simd.hpp)" >&2
+  failures=$((failures + 1))
+done < <(grep -rnE '#[[:space:]]*include[[:space:]]*<[a-z0-9_]*(intrin|mmintrin|neon|sve|altivec|vecintrin)[a-z0-9_]*\.h>|vector_size|__m(64|128|256|512)|ext_vector_type' include || true)
 
 if ((failures)); then
   echo "check-includes: $failures include(s) against the area graph" >&2

@@ -5,7 +5,7 @@
 /// clothcd/learning/ and is not included here.
 
 #include "clothcd/version.hpp"
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
 #include "clothcd/broadphase/body_topology.hpp"
 #include "clothcd/broadphase/bvh.hpp"
 #include "clothcd/broadphase/candidates.hpp"

@@ -2,7 +2,7 @@
 // The primitive tests of one pair of overlapping leaves (internal to the broad phase): vertices against faces and
 // edges against edges by their swept boxes, producing candidate pairs. Each primitive is first pre-selected against
 // the other leaf's box, then tested against the other leaf's primitives (of two different leaves, only the span of
-// them from the first to the last that may touch the first leaf's box) four (or, with AVX2, eight) at a time on
+// them from the first to the last that may touch the first leaf's box) four (or, from SimdLevel::Avx2 up, eight) at a time on
 // packed single-precision boxes (and, within one body, packed vertex indices to skip pairs that share a vertex); the
 // few passes are confirmed on the double-precision boxes, so the output is exactly that of the box tests.
 
@@ -12,12 +12,13 @@
 #include "clothcd/broadphase/candidates.hpp"
 #include "clothcd/broadphase/packed_boxes.hpp"
 #include "clothcd/broadphase/traversal.hpp"
+#include "clothcd/simd_level.hpp"
 
 namespace clothcd::broadphase::detail {
 
 /// Lists of one search task, reused from leaf pair to leaf pair.
 struct LeafScratch {
-  bool wide_lanes = false;    ///< Test eight primitives at a time (only where avx2_supported())
+  SimdLevel level = SimdLevel::Baseline;  ///< The level the lane tests run at (eight lanes from Avx2 up, else four)
   std::vector<int> selected;  ///< Primitives of one leaf whose box overlaps the other leaf's box
   std::vector<int> hits;      ///< Primitives of the other leaf that pass every test against one selected primitive
 };
@@ -44,5 +45,18 @@ void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, con
 /// a vertex. With `moved` (flags per vertex), only pairs with a moved vertex are produced.
 void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
                       TraversalStats& stats, LeafScratch& scratch);
+
+/// The lanes one packed test covers at `level`: 8 from SimdLevel::Avx2 up, else 4.
+[[nodiscard]] int packed_lane_width(SimdLevel level);
+
+/// Bit k set when packed box j + k may overlap `q` (k < packed_lane_width(level)): set whenever the double-precision
+/// boxes overlap, never in the padding. Requires 0 <= j < boxes.size(). The lane test of the kernels, for tests.
+[[nodiscard]] unsigned packed_overlap_bits(SimdLevel level, const PackedBoxes& boxes, int j, const PackedBox& q);
+
+/// Bit k set when edge j + k of the edge rows `ids` uses vertex `v` or `w` (>= 0); never in the padding.
+[[nodiscard]] unsigned packed_edge_uses_bits(SimdLevel level, const PackedVertexIds& ids, int j, int v, int w);
+
+/// Bit k set when face j + k of the face rows `ids` uses vertex `v` (>= 0); never in the padding.
+[[nodiscard]] unsigned packed_face_uses_bits(SimdLevel level, const PackedVertexIds& ids, int j, int v);
 
 }  // namespace clothcd::broadphase::detail

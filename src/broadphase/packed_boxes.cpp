@@ -9,6 +9,9 @@
 #include <cstring>
 #include <limits>
 
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
+
 namespace clothcd::broadphase {
 namespace {
 
@@ -29,13 +32,13 @@ inline float round_up(double x) {
   return x < 0.0 ? -kBelowLargeBound : kInfinity;
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
 // Four bounds x[0..3] rounded outwards (kUpper: up, else down) into out[0..3]: round_up/round_down with selects
 // instead of branches, bit for bit the same floats.
 template <bool kUpper>
 void round_four(const double* x, float* out) {
-  using Doubles4 = double __attribute__((vector_size(32)));
-  using Floats4 = float __attribute__((vector_size(16)));
+  using Doubles4 = simd::F64x4;
+  using Floats4 = simd::F32x4;
   constexpr double kInfinityDouble = std::numeric_limits<double>::infinity();
   constexpr double kBelowLarge = kBelowLargeBound;  // exact in double; converts back to kBelowLargeBound
   Doubles4 v;
@@ -52,7 +55,7 @@ void round_four(const double* x, float* out) {
 
 // The six rows of boxes [0, n) four boxes at a time with AVX2 (rows of `stride` floats from `r`); returns how many
 // boxes it wrote (a multiple of four).
-__attribute__((target("avx2"), flatten)) int round_rows_avx2(const FlatBox* boxes, int n, float* r, int stride) {
+CLOTHCD_SIMD_AVX2 __attribute__((flatten)) int round_rows_avx2(const FlatBox* boxes, int n, float* r, int stride) {
   int j = 0;
   for (; j + 4 <= n; j += 4) {
     const FlatBox* b = boxes + j;
@@ -84,8 +87,8 @@ void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
   rows_.resize(6 * static_cast<std::size_t>(stride_));
   float* r = rows_.data();
   int j = 0;
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx2_supported()) j = round_rows_avx2(boxes.data(), size_, r, stride_);
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() >= SimdLevel::Avx2) j = round_rows_avx2(boxes.data(), size_, r, stride_);
 #endif
   for (; j < size_; ++j) {
     const FlatBox& b = boxes[j];

@@ -21,7 +21,7 @@
 
 #include "broadphase/leaf_pairs.hpp"
 #include "clothcd/broadphase/packed_boxes.hpp"
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
 
 namespace clothcd::broadphase {
 namespace {
@@ -183,7 +183,7 @@ constexpr int kSpawnFaces = 2048;
 template <class Overlap, class LeafWork>
 void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8_t* dirty, const Task& root,
             const LeafWork& leaf_work, const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
-  const bool wide = settings.wide_lanes && avx2_supported();
+  const SimdLevel level = simd_level();
   const bool spawn = settings.parallel && face_count(ta, root.a) + face_count(tb, root.b) >= kSpawnFaces;
   tbb::enumerable_thread_specific<TraversalStats> thread_stats;
   tbb::task_group group;
@@ -193,7 +193,7 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
     TraversalStats& task_stats = spawn ? thread_stats.local() : stats;
     CandidateSet buffer;
     detail::LeafScratch scratch;
-    scratch.wide_lanes = wide;
+    scratch.level = level;
     std::vector<Task> stack{first};
     auto push = [&](const Task& t) {
       if (spawn && faces(t) >= kSpawnFaces) {
@@ -250,7 +250,7 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
     const auto started = Clock::now();
     std::vector<Task> stack{first};
     detail::LeafScratch scratch;
-    scratch.wide_lanes = settings.wide_lanes && avx2_supported();
+    scratch.level = simd_level();
     while (!stack.empty()) {
       const Task task = stack.back();
       stack.pop_back();
@@ -315,10 +315,10 @@ bool few_moved(const std::vector<std::uint8_t>& moved) {
 class MovedQueries {
  public:
   // The candidates go to `out`, and from there, when streaming, to the sink (see pass_on).
-  MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved,
-               const TraversalSettings& settings, CandidateSet& out, const Output& output, TraversalStats& stats)
+  MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved, CandidateSet& out,
+               const Output& output, TraversalStats& stats)
       : moved_tree_(moved_tree), searched_(searched), moved_(moved), out_(out), output_(output), stats_(stats) {
-    scratch_.wide_lanes = settings.wide_lanes && avx2_supported();
+    scratch_.level = simd_level();
   }
 
   // True when vertex v of the moved body moved.
@@ -410,13 +410,13 @@ class MovedQueries {
 
 // find_self_candidates restricted to `moved` by queries: each moved vertex against the faces, each moved face against
 // the unmoved vertices, each moved edge against the edges (a pair of two moved edges from the one of lower index).
-void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& moved, const TraversalSettings& settings,
-                      CandidateSet& out, const Output& output, TraversalStats& stats) {
+void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& moved, CandidateSet& out,
+                      const Output& output, TraversalStats& stats) {
   const Bvh& t = *body.bvh;
   const int id = body.body;
   const int* faces = t.ordered_faces().data();
   const int* edges = t.ordered_edges().data();
-  MovedQueries queries(t, t, moved, settings, out, output, stats);
+  MovedQueries queries(t, t, moved, out, output, stats);
   queries.run(
       [&](int i, const std::vector<int>& face_hits) {
         const int v = t.owned_vertices()[i];
@@ -449,12 +449,11 @@ void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& mov
 
 // find_pair_candidates restricted to `moved` (of body a) by queries of body b's hierarchy: each moved vertex of a
 // against b's faces, each moved face of a against b's vertices, each moved edge of a against b's edges.
-void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved,
-                      const TraversalSettings& settings, CandidateSet& out, const Output& output,
-                      TraversalStats& stats) {
+void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved, CandidateSet& out,
+                      const Output& output, TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
-  MovedQueries queries(ta, tb, moved, settings, out, output, stats);
+  MovedQueries queries(ta, tb, moved, out, output, stats);
   queries.run(
       [&](int i, const std::vector<int>& face_hits) {
         for (const int p : face_hits) {
@@ -510,7 +509,7 @@ void self_search(const BodyView& body, const TraversalSettings& settings, const 
   if (moved != nullptr && few_moved(*settings.moved_vertices)) {
     const auto started = Clock::now();
     CandidateSet buffer;
-    query_moved_self(body, *settings.moved_vertices, settings, output.sink ? buffer : *output.collected, output, local);
+    query_moved_self(body, *settings.moved_vertices, output.sink ? buffer : *output.collected, output, local);
     local.task_ms += milliseconds_since(started);
   } else {
     search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, output, local);
@@ -543,7 +542,7 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
   if (moved != nullptr && few_moved(*settings.moved_vertices)) {
     const auto started = Clock::now();
     CandidateSet buffer;
-    query_moved_pair(a, b, *settings.moved_vertices, settings, output.sink ? buffer : *output.collected, output, local);
+    query_moved_pair(a, b, *settings.moved_vertices, output.sink ? buffer : *output.collected, output, local);
     local.task_ms += milliseconds_since(started);
   } else if (spheres) {
     // Root-node double box: sphere first, the AABBs only when the spheres overlap, the descent only after both.

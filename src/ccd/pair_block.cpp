@@ -103,7 +103,7 @@ int PairBlock::compact(int count, const std::uint8_t* keep) {
 
 int cull_pair_block(PairBlock& block, int count, CcdFilter filter, const CcdSettings& settings,
                     const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled) {
-  return detail::cull_pairs(block, count, filter, settings, options, detail::fastest_block_isa(), culled);
+  return detail::cull_pairs(block, count, filter, settings, options, simd_level(), culled);
 }
 
 namespace detail {
@@ -112,12 +112,12 @@ namespace {
 // culled[i] for pairs [0, count) of `block`: one projection filter pass over its lane groups, then, with
 // `nonpenetration`, the non-penetration filter on the pairs the pass left.
 void filter_pass(const PairBlock& block, int count, const CcdSettings& settings,
-                 const ProjectionFilterOptions& options, BlockIsa isa, BlockPass pass, bool nonpenetration,
+                 const ProjectionFilterOptions& options, SimdLevel level, BlockPass pass, bool nonpenetration,
                  std::uint8_t* culled) {
   constexpr int lanes = PairLanes::kLanes;
   std::uint8_t group_culled[lanes];
   for (int g = 0; g * lanes < count; ++g) {
-    projection_filter_block(block.group(g), settings, options, group_culled, isa, pass);
+    projection_filter_block(block.group(g), settings, options, group_culled, level, pass);
     const int n = count - g * lanes < lanes ? count - g * lanes : lanes;
     for (int lane = 0; lane < n; ++lane) culled[g * lanes + lane] = group_culled[lane];
   }
@@ -136,7 +136,7 @@ int keep_unculled(PairBlock& block, int count, std::vector<std::uint8_t>& culled
 }  // namespace
 
 int cull_pairs(PairBlock& block, int count, CcdFilter filter, const CcdSettings& settings,
-               const ProjectionFilterOptions& options, BlockIsa isa, std::vector<std::uint8_t>& culled) {
+               const ProjectionFilterOptions& options, SimdLevel level, std::vector<std::uint8_t>& culled) {
   if (culled.size() < static_cast<std::size_t>(count)) culled.resize(static_cast<std::size_t>(count));
   if (filter == CcdFilter::None) return count;
   if (filter == CcdFilter::NonPenetration) {
@@ -146,13 +146,13 @@ int cull_pairs(PairBlock& block, int count, CcdFilter filter, const CcdSettings&
   // The non-penetration filter says nothing with a thickness (nonpenetration_filter_culls is false then).
   const bool nonpenetration = filter == CcdFilter::Combined && settings.thickness == 0.0;
   if (!options.use_primitive_normals) {
-    filter_pass(block, count, settings, options, isa, BlockPass::All, nonpenetration, culled.data());
+    filter_pass(block, count, settings, options, level, BlockPass::All, nonpenetration, culled.data());
     return keep_unculled(block, count, culled);
   }
   // The primitives' normals cull most pairs: they run first on every pair, the other directions on the survivors.
-  filter_pass(block, count, settings, options, isa, BlockPass::Normals, false, culled.data());
+  filter_pass(block, count, settings, options, level, BlockPass::Normals, false, culled.data());
   const int survivors = keep_unculled(block, count, culled);
-  filter_pass(block, survivors, settings, options, isa, BlockPass::AfterNormals, nonpenetration, culled.data());
+  filter_pass(block, survivors, settings, options, level, BlockPass::AfterNormals, nonpenetration, culled.data());
   return keep_unculled(block, survivors, culled);
 }
 

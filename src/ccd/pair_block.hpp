@@ -8,8 +8,8 @@
 
 namespace clothcd::ccd::detail {
 
-/// cull_pair_block with the block filters run on `isa` (one of supported_block_isas()).
+/// cull_pair_block with the block filters run at `level` (one of cpu_simd_levels()).
 int cull_pairs(PairBlock& block, int count, CcdFilter filter, const CcdSettings& settings,
-               const ProjectionFilterOptions& options, BlockIsa isa, std::vector<std::uint8_t>& culled);
+               const ProjectionFilterOptions& options, SimdLevel level, std::vector<std::uint8_t>& culled);
 
 }  // namespace clothcd::ccd::detail

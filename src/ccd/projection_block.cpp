@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "clothcd/cpu_features.hpp"
+#include "support/simd.hpp"
 
 namespace clothcd::ccd::detail {
 
@@ -180,14 +180,14 @@ void filter_baseline(const QueryBlock& b, double thickness, PassDirections pass,
   filter_block<false>(b, thickness, pass, out);
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
-__attribute__((target("avx2"))) void filter_avx2(const QueryBlock& b, double thickness, PassDirections pass,
+#if defined(CLOTHCD_SIMD_X86)
+CLOTHCD_SIMD_AVX2 void filter_avx2(const QueryBlock& b, double thickness, PassDirections pass,
                                                  std::uint8_t* out) {
   if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
   filter_block<false>(b, thickness, pass, out);
 }
 
-__attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, double thickness, PassDirections pass,
+CLOTHCD_SIMD_AVX512 void filter_avx512(const QueryBlock& b, double thickness, PassDirections pass,
                                                       std::uint8_t* out) {
   if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
   filter_block<false>(b, thickness, pass, out);
@@ -196,19 +196,8 @@ __attribute__((target("avx512f"))) void filter_avx512(const QueryBlock& b, doubl
 
 }  // namespace
 
-std::vector<BlockIsa> supported_block_isas() {
-  std::vector<BlockIsa> isas{BlockIsa::Baseline};
-  if (avx2_supported()) isas.push_back(BlockIsa::Avx2);
-  if (avx512_supported()) isas.push_back(BlockIsa::Avx512);
-  return isas;
-}
-
-BlockIsa fastest_block_isa() {
-  return avx512_supported() ? BlockIsa::Avx512 : avx2_supported() ? BlockIsa::Avx2 : BlockIsa::Baseline;
-}
-
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
-                             const ProjectionFilterOptions& options, std::uint8_t* culled, BlockIsa isa,
+                             const ProjectionFilterOptions& options, std::uint8_t* culled, SimdLevel level,
                              BlockPass pass) {
   if (!(settings.thickness >= 0.0 && std::isfinite(settings.thickness))) {  // as the per-pair filter: no verdict
     std::fill(culled, culled + block.count, std::uint8_t{0});
@@ -217,22 +206,23 @@ void projection_filter_block(const QueryBlock& block, const CcdSettings& setting
   const bool normals = options.use_primitive_normals;
   const PassDirections directions{normals && pass != BlockPass::AfterNormals, pass != BlockPass::Normals,
                                   normals && pass != BlockPass::Normals};
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (isa == BlockIsa::Avx512) {
+#if defined(CLOTHCD_SIMD_X86)
+  if (level == SimdLevel::Avx512) {
     filter_avx512(block, settings.thickness, directions, culled);
-  } else if (isa == BlockIsa::Avx2) {
+  } else if (level == SimdLevel::Avx2) {
     filter_avx2(block, settings.thickness, directions, culled);
   } else {
     filter_baseline(block, settings.thickness, directions, culled);
   }
 #else
+  (void)level;
   filter_baseline(block, settings.thickness, directions, culled);
 #endif
 }
 
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,
                                const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled,
-                               BlockIsa isa) {
+                               SimdLevel level) {
   culled.assign(queries.size(), 0);
   // One pass over the queries at the positions `todo`, in blocks of one kind formed in order.
   auto run = [&](const std::vector<std::size_t>& todo, BlockPass pass) {
@@ -242,7 +232,7 @@ void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSe
       if (block.count == 0) return;
       block.pad_unused();
       std::uint8_t block_culled[QueryBlock::kLanes];
-      projection_filter_block(block, settings, options, block_culled, isa, pass);
+      projection_filter_block(block, settings, options, block_culled, level, pass);
       for (int lane = 0; lane < block.count; ++lane) culled[todo[first + lane]] = block_culled[lane];
       first += static_cast<std::size_t>(block.count);
       block.count = 0;

@@ -6,25 +6,12 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/pair_block.hpp"
+#include "clothcd/simd_level.hpp"
 
 namespace clothcd::ccd::detail {
 
 /// The block filters' lane group (see PairLanes).
 using QueryBlock = PairLanes;
-
-/// The instruction sets the block filter is compiled for. Every one runs the same IEEE operations in the same order
-/// (no fused multiply-add: the library is built as ISO C++, so no contraction), so all give the same verdicts.
-enum class BlockIsa {
-  Baseline,  ///< x86-64 baseline (two doubles per instruction), or the target's default elsewhere.
-  Avx2,      ///< AVX2: four doubles per instruction.
-  Avx512,    ///< AVX-512F: eight doubles per instruction.
-};
-
-/// The instruction sets this CPU runs, baseline first.
-[[nodiscard]] std::vector<BlockIsa> supported_block_isas();
-
-/// The widest instruction set this CPU runs.
-[[nodiscard]] BlockIsa fastest_block_isa();
 
 /// The in-plane directions of ProjectionFilterOptions::use_primitive_normals on one pair (the last directions the
 /// per-pair filter tries; the block filter computes the same directions on its lanes): true when one of them
@@ -46,16 +33,17 @@ enum class BlockPass {
 /// other at t = 0 and at t = 1. Pairs with a coordinate beyond 1e100 in magnitude or not a number are never culled.
 /// With primitive normals, the in-plane directions too (those of separated_in_plane), on every lane. With `pass`, only
 /// some of the directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
-/// `isa` must be one of supported_block_isas().
+/// Runs the version compiled for `level`, one of cpu_simd_levels(); every level gives the same verdicts (the same IEEE
+/// operations in the same order, never fused).
 void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled,
-                             BlockIsa isa = fastest_block_isa(), BlockPass pass = BlockPass::All);
+                             SimdLevel level = simd_level(), BlockPass pass = BlockPass::All);
 
 /// The block filter over a vector of queries of any kinds (blocks formed in order; with primitive normals, the Normals
 /// pass over all, then AfterNormals over the survivors, as the detector runs it): culled[i] for queries[i]. For tests
 /// and benchmarks; the detector fills its blocks straight from the vertex arrays.
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,
                                const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled,
-                               BlockIsa isa = fastest_block_isa());
+                               SimdLevel level = simd_level());
 
 }  // namespace clothcd::ccd::detail

@@ -15,14 +15,12 @@
 
 #include "clothcd/geometry/convex_hull.hpp"
 #include "clothcd/geometry/simplify.hpp"
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
 #include "min_area_rectangle.hpp"
 #include "power_of_two_scale.hpp"
 #include "slab_extremes.hpp"
 
-#if defined(CLOTHCD_AVX2_PATHS)
-#include <immintrin.h>
-#endif
 
 namespace clothcd::geometry {
 namespace {
@@ -137,9 +135,9 @@ Eigen::Vector3d area_weighted_centre(const Vertices& v, const Faces& faces) {
 // row.
 using FaceMoments = std::array<double, 9>;
 
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
 // sum_moments four entries at a time: every entry summed in the same order.
-__attribute__((target("avx2"))) FaceMoments sum_moments_avx2(const FaceMoments* moments, const int* faces,
+CLOTHCD_SIMD_AVX2 FaceMoments sum_moments_avx2(const FaceMoments* moments, const int* faces,
                                                              size_t count) {
   __m256d low = _mm256_setzero_pd(), high = _mm256_setzero_pd();
   double last = 0.0;
@@ -159,8 +157,8 @@ __attribute__((target("avx2"))) FaceMoments sum_moments_avx2(const FaceMoments* 
 
 // The sum of moments[faces[j]] over j < count, entry by entry.
 FaceMoments sum_moments(const FaceMoments* moments, const int* faces, size_t count) {
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx2_supported()) return sum_moments_avx2(moments, faces, count);
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() >= SimdLevel::Avx2) return sum_moments_avx2(moments, faces, count);
 #endif
   FaceMoments total{};
   for (size_t j = 0; j < count; ++j)
@@ -290,16 +288,16 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   return refine_axes(scratch.kept, axes, scratch);
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
 // Row p moved: the three coordinates in one register (the fourth lane unused), with move_rows's products and sums.
-__attribute__((target("avx2"), always_inline)) inline __m256d moved_row(const double* p, __m256d c0, __m256d c1,
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline __m256d moved_row(const double* p, __m256d c0, __m256d c1,
                                                                           __m256d c2, __m256d shift) {
   const __m256d yz =
       _mm256_add_pd(_mm256_mul_pd(c1, _mm256_broadcast_sd(p + 1)), _mm256_mul_pd(c2, _mm256_broadcast_sd(p + 2)));
   return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(c0, _mm256_broadcast_sd(p)), yz), shift);
 }
 
-__attribute__((target("avx2"))) void move_rows_avx2(const double* from, Eigen::Index rows, const Eigen::Matrix3d& r,
+CLOTHCD_SIMD_AVX2 void move_rows_avx2(const double* from, Eigen::Index rows, const Eigen::Matrix3d& r,
                                                     const Eigen::Vector3d& t, double* to) {
   if (rows == 0) return;
   const __m256d c0 = _mm256_setr_pd(r(0, 0), r(1, 0), r(2, 0), 0.0);
@@ -322,8 +320,8 @@ void move_rows(const Vertices& rest, const Eigen::Isometry3d& pose, Vertices& mo
   const Eigen::Vector3d t = pose.translation();
   const double* from = rest.data();
   double* to = moved.data();
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx2_supported()) return move_rows_avx2(from, rest.rows(), r, t, to);
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() >= SimdLevel::Avx2) return move_rows_avx2(from, rest.rows(), r, t, to);
 #endif
   for (Eigen::Index i = 0; i < rest.rows(); ++i, from += 3, to += 3) {
     for (int k = 0; k < 3; ++k) to[k] = r(k, 0) * from[0] + (r(k, 1) * from[1] + r(k, 2) * from[2]) + t[k];

@@ -7,11 +7,9 @@
 #include <array>
 #include <limits>
 
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
 
-#if defined(CLOTHCD_AVX2_PATHS)
-#include <immintrin.h>
-#endif
 
 namespace clothcd::geometry::detail {
 namespace {
@@ -48,7 +46,7 @@ double squared_distance(const double* p, const Eigen::Vector3d& centre) {
   return (Eigen::Vector3d(p[0], p[1], p[2]) - centre).squaredNorm();
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
 
 // Per slab: the running best of {p[b], p[c], -p[b], -p[c]} and of the distance from the centre (lane 1 unused, never
 // beaten), with their rows as doubles (exact) so that one comparison mask selects value and row together.
@@ -60,7 +58,7 @@ struct alignas(32) SlabBest {
 };
 
 // bounds() with a row in one register (the fourth lane unused); min(p, low) is exactly std::min(low, p), and so on.
-__attribute__((target("avx2"))) void bounds_avx2(const Vertices& points, Eigen::Vector3d& low, Eigen::Vector3d& high) {
+CLOTHCD_SIMD_AVX2 void bounds_avx2(const Vertices& points, Eigen::Vector3d& low, Eigen::Vector3d& high) {
   low.setZero();
   high.setZero();
   if (points.rows() == 0) return;
@@ -79,7 +77,7 @@ __attribute__((target("avx2"))) void bounds_avx2(const Vertices& points, Eigen::
 }
 
 // Updates `slab` (of axis a) by the point p (row `row`, distance `far` from the centre).
-__attribute__((target("avx2"), always_inline)) inline void take_better(SlabBest& slab, const double* p, int a,
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void take_better(SlabBest& slab, const double* p, int a,
                                                                        __m128d far, __m256d row) {
   const int b = (a + 1) % 3, c = (a + 2) % 3;
   // A strictly greater value replaces the running best and its row (so ties keep the first row); max(value, old) is
@@ -99,7 +97,7 @@ __attribute__((target("avx2"), always_inline)) inline void take_better(SlabBest&
 // The running bests of every slab, updated point by point. The slab indices of a block of points are computed before
 // the block's updates, so the updates' addresses are known early (else each load of a running best may wait for, or
 // be replayed after, the stores of the point before, which often hit the same slab).
-__attribute__((target("avx2"))) void slab_extremes_avx2(const Vertices& points, const Eigen::Vector3d& centre,
+CLOTHCD_SIMD_AVX2 void slab_extremes_avx2(const Vertices& points, const Eigen::Vector3d& centre,
                                                         int slabs, int* rows) {
   Eigen::Vector3d low, high;
   bounds_avx2(points, low, high);
@@ -173,8 +171,8 @@ void slab_extremes_reference(const Vertices& points, const Eigen::Vector3d& cent
 }
 
 void slab_extremes(const Vertices& points, const Eigen::Vector3d& centre, int slabs, int* rows) {
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx2_supported()) return slab_extremes_avx2(points, centre, slabs, rows);
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() >= SimdLevel::Avx2) return slab_extremes_avx2(points, centre, slabs, rows);
 #endif
   slab_extremes_reference(points, centre, slabs, rows);
 }

@@ -5,11 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
 
-#if defined(CLOTHCD_AVX2_PATHS)
-#include <immintrin.h>
-#endif
 
 namespace clothcd::geometry {
 namespace {
@@ -35,11 +33,11 @@ void split(std::vector<Eigen::Vector3d>& points, int begin, int end, int group_s
   split(points, middle, end, group_size, starts);
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
 
 // {min, max} of x[i] dx + y[i] dy + z[i] dz over i < count (a multiple of 4), four points at a time, each product
 // summed in the order of Eigen's dot product of the point with the direction, so the values are those of a scan.
-__attribute__((target("avx2"))) std::pair<double, double> scan_min_max(const double* x, const double* y,
+CLOTHCD_SIMD_AVX2 std::pair<double, double> scan_min_max(const double* x, const double* y,
                                                                        const double* z, size_t count,
                                                                        const Eigen::Vector3d& direction) {
   const __m256d dx = _mm256_set1_pd(direction.x()), dy = _mm256_set1_pd(direction.y()),
@@ -86,7 +84,7 @@ SupportPoints::SupportPoints(const Vertices& points, int group_size) {
     radius_.push_back(radius + 1e-9 * (centre.norm() + radius));
   }
   // Few points: a scan of them all, four at a time, costs less than the group bounds and the branches on them.
-  if (n <= kScanAll && avx2_supported()) {
+  if (n <= kScanAll && simd_level() >= SimdLevel::Avx2) {
     scan_count_ = (size_t(n) + 3) / 4 * 4;
     coordinates_.resize(3 * scan_count_);
     for (size_t i = 0; i < scan_count_; ++i)  // padded with copies of the first point (min and max unchanged)
@@ -131,7 +129,7 @@ void SupportPoints::group_min_max(std::size_t g, const Eigen::Vector3d& directio
 }
 
 std::pair<double, double> SupportPoints::min_max_dot(const Eigen::Vector3d& direction) const {
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
   if (scan_count_ > 0) {
     const double* x = coordinates_.data();
     return scan_min_max(x, x + scan_count_, x + 2 * scan_count_, scan_count_, direction);

@@ -9,7 +9,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
 
 namespace clothcd::learning {
 namespace {
@@ -131,15 +132,15 @@ void forward_baseline(const NetworkWeights& weights, const std::vector<std::size
   forward_rows(weights, input_columns, batch, begin, n, out);
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
-__attribute__((target("avx2"))) void forward_avx2(const NetworkWeights& weights,
+#if defined(CLOTHCD_SIMD_X86)
+CLOTHCD_SIMD_AVX2 void forward_avx2(const NetworkWeights& weights,
                                                   const std::vector<std::size_t>& input_columns,
                                                   const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
                                                   double* out) {
   forward_rows(weights, input_columns, batch, begin, n, out);
 }
 
-__attribute__((target("avx512f"))) void forward_avx512(const NetworkWeights& weights,
+CLOTHCD_SIMD_AVX512 void forward_avx512(const NetworkWeights& weights,
                                                        const std::vector<std::size_t>& input_columns,
                                                        const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
                                                        double* out) {
@@ -149,9 +150,9 @@ __attribute__((target("avx512f"))) void forward_avx512(const NetworkWeights& wei
 
 void forward_block(const NetworkWeights& weights, const std::vector<std::size_t>& input_columns,
                    const PairFeatureBatch& batch, std::size_t begin, std::size_t n, double* out) {
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx512_supported()) return forward_avx512(weights, input_columns, batch, begin, n, out);
-  if (avx2_supported()) return forward_avx2(weights, input_columns, batch, begin, n, out);
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() == SimdLevel::Avx512) return forward_avx512(weights, input_columns, batch, begin, n, out);
+  if (simd_level() >= SimdLevel::Avx2) return forward_avx2(weights, input_columns, batch, begin, n, out);
 #endif
   forward_baseline(weights, input_columns, batch, begin, n, out);
 }

@@ -8,7 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
 #include "learning/cube_root.hpp"
 
 namespace clothcd::learning::detail {
@@ -254,12 +255,12 @@ void blocks_baseline(const PairGeometry* pairs, std::size_t count, std::size_t f
   blocks(pairs, count, features, batch);
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
-__attribute__((target("avx2"))) void blocks_avx2(const PairGeometry* pairs, std::size_t count, std::size_t features,
+#if defined(CLOTHCD_SIMD_X86)
+CLOTHCD_SIMD_AVX2 void blocks_avx2(const PairGeometry* pairs, std::size_t count, std::size_t features,
                                                  PairFeatureBatch& batch) {
   blocks(pairs, count, features, batch);
 }
-__attribute__((target("avx512f"))) void blocks_avx512(const PairGeometry* pairs, std::size_t count,
+CLOTHCD_SIMD_AVX512 void blocks_avx512(const PairGeometry* pairs, std::size_t count,
                                                       std::size_t features, PairFeatureBatch& batch) {
   blocks(pairs, count, features, batch);
 }
@@ -273,13 +274,13 @@ bool pair_coordinates_finite(const PairGeometry& pair) {
   return std::isfinite(coordinate_sum);
 }
 
-void compute_feature_blocks(const PairGeometry* pairs, std::size_t count, std::size_t features, bool wide,
+void compute_feature_blocks(const PairGeometry* pairs, std::size_t count, std::size_t features, SimdLevel level,
                             PairFeatureBatch& batch) {
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (wide && avx512_supported()) return blocks_avx512(pairs, count, features, batch);
-  if (wide && avx2_supported()) return blocks_avx2(pairs, count, features, batch);
+#if defined(CLOTHCD_SIMD_X86)
+  if (level == SimdLevel::Avx512) return blocks_avx512(pairs, count, features, batch);
+  if (level == SimdLevel::Avx2) return blocks_avx2(pairs, count, features, batch);
 #endif
-  (void)wide;
+  (void)level;
   blocks_baseline(pairs, count, features, batch);
 }
 

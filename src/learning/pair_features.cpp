@@ -144,7 +144,7 @@ void compute_pair_features(const PairGeometry* pairs, std::size_t count, const F
                            PairFeatureBatch& batch) {
   const std::size_t features = std::min(settings.count, kMaxPairFeatures);
   batch.resize(count, features);
-  detail::compute_feature_blocks(pairs, count, features, true, batch);
+  detail::compute_feature_blocks(pairs, count, features, simd_level(), batch);
 }
 
 }  // namespace clothcd::learning

@@ -4,7 +4,8 @@
 // and plain preconditioned CG applies. Pinned vertices are handled by filtering (Baraff-Witkin section 5.3).
 #include "clothcd/simulation/implicit_integrator.hpp"
 
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,11 +53,11 @@ void multiply_springs(const double* n0, const double* n1, const double* n2, cons
   }
 }
 
-#if defined(CLOTHCD_AVX2_PATHS)
+#if defined(CLOTHCD_SIMD_X86)
 // multiply_springs for the springs [0, 4 floor(count / 4)), four at a time: the same operations in the same order on
 // each spring (the library is built without contraction into fused multiply-adds), and the sums updated spring by
 // spring in order, so the result is bit for bit the scalar one. Returns the number of springs done.
-CLOTHCD_AVX2 std::size_t multiply_springs_avx2(const double* n0, const double* n1, const double* n2,
+CLOTHCD_SIMD_AVX2 std::size_t multiply_springs_avx2(const double* n0, const double* n1, const double* n2,
                                                const double* alpha, const double* beta, const int* a3s,
                                                const int* b3s, std::size_t count, const double* in, double* sum) {
   const __m256i first_three = _mm256_set_epi64x(0, -1, -1, -1);  // a vertex's x, y, z (never reads past the vector)
@@ -96,7 +97,7 @@ CLOTHCD_AVX2 std::size_t multiply_springs_avx2(const double* n0, const double* n
 
 // The CG's elementwise updates dv += step p, r -= step ap, z = r / diagonal on [0, 4 floor(n / 4)), four at a time, in
 // one pass: the same operation per element as the Eigen expressions (so the same values); returns the count done.
-CLOTHCD_AVX2 Eigen::Index cg_step_avx2(double step, const double* p, const double* ap, const double* diagonal,
+CLOTHCD_SIMD_AVX2 Eigen::Index cg_step_avx2(double step, const double* p, const double* ap, const double* diagonal,
                                        double* dv, double* r, double* z, Eigen::Index n) {
   const __m256d s = _mm256_set1_pd(step);
   Eigen::Index i = 0;
@@ -110,7 +111,7 @@ CLOTHCD_AVX2 Eigen::Index cg_step_avx2(double step, const double* p, const doubl
 }
 
 // Loads rows (x, y, z) of a stacked 3n vector at four offsets and returns them as the four x's, y's and z's.
-CLOTHCD_AVX2 void gather_rows(const double* stacked, const int* offsets, __m256d out[3]) {
+CLOTHCD_SIMD_AVX2 void gather_rows(const double* stacked, const int* offsets, __m256d out[3]) {
   const __m256i first_three = _mm256_set_epi64x(0, -1, -1, -1);
   __m256d r[4];
   for (int l = 0; l < 4; ++l) r[l] = _mm256_maskload_pd(stacked + offsets[l], first_three);
@@ -122,7 +123,7 @@ CLOTHCD_AVX2 void gather_rows(const double* stacked, const int* offsets, __m256d
 }
 
 // (a0 b0 + a1 b1) + a2 b2, the order of Eigen's 3-vector dot product and squared norm.
-CLOTHCD_AVX2 __m256d dot3(const __m256d a[3], const __m256d b[3]) {
+CLOTHCD_SIMD_AVX2 __m256d dot3(const __m256d a[3], const __m256d b[3]) {
   return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a[0], b[0]), _mm256_mul_pd(a[1], b[1])), _mm256_mul_pd(a[2], b[2]));
 }
 
@@ -130,7 +131,7 @@ CLOTHCD_AVX2 __m256d dot3(const __m256d a[3], const __m256d b[3]) {
 // operations in the same order as its scalar loop (the Eigen expressions there), blocks written per field, and rhs and
 // diagonal updated spring by spring in order, so the result is bit for bit the scalar one. `rest` and `stiffness`
 // hold each spring's rest length and k. Returns the number of springs done.
-CLOTHCD_AVX2 std::size_t linearise_springs_avx2(const double* x, const double* v, const double* rest,
+CLOTHCD_SIMD_AVX2 std::size_t linearise_springs_avx2(const double* x, const double* v, const double* rest,
                                                 const double* stiffness, double h, double damping, std::size_t count,
                                                 double* n0, double* n1, double* n2, double* alpha, double* beta,
                                                 const int* a3s, const int* b3s, double* rhs, double* diagonal) {
@@ -185,7 +186,7 @@ CLOTHCD_AVX2 std::size_t linearise_springs_avx2(const double* x, const double* v
 }
 
 // The CG's new search direction p = z + c p on [0, 4 floor(n / 4)), four at a time; returns the count done.
-CLOTHCD_AVX2 Eigen::Index cg_direction_avx2(double c, const double* z, double* p, Eigen::Index n) {
+CLOTHCD_SIMD_AVX2 Eigen::Index cg_direction_avx2(double c, const double* z, double* p, Eigen::Index n) {
   const __m256d cs = _mm256_set1_pd(c);
   Eigen::Index i = 0;
   for (; i + 4 <= n; i += 4) {
@@ -207,8 +208,8 @@ void ImplicitIntegrator::multiply(const ClothModel& model, const Eigen::VectorXd
   const SpringBlocks& b = blocks_;
   const std::size_t count = b.alpha.size();
   std::size_t done = 0;
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx2_supported()) {
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() >= SimdLevel::Avx2) {
     done = multiply_springs_avx2(b.n0.data(), b.n1.data(), b.n2.data(), b.alpha.data(), b.beta.data(), b.a3.data(),
                                  b.b3.data(), count, p.data(), out.data());
   }
@@ -256,8 +257,8 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
     blocks_.stiffness[s] = stiffness_of(cs, spring.kind);
   }
   std::size_t linearised = 0;
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (avx2_supported()) {
+#if defined(CLOTHCD_SIMD_X86)
+  if (simd_level() >= SimdLevel::Avx2) {
     linearised = linearise_springs_avx2(state.positions.data(), state.velocities.data(), blocks_.rest.data(),
                                         blocks_.stiffness.data(), h, cs.spring_damping, springs, blocks_.n0.data(),
                                         blocks_.n1.data(), blocks_.n2.data(), blocks_.alpha.data(),
@@ -318,8 +319,8 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
     const double step = rz / pap;
     const Eigen::Index size = dv_.size();
     Eigen::Index done = 0;
-#if defined(CLOTHCD_AVX2_PATHS)
-    if (avx2_supported()) {
+#if defined(CLOTHCD_SIMD_X86)
+    if (simd_level() >= SimdLevel::Avx2) {
       done = cg_step_avx2(step, p_.data(), ap_.data(), diagonal_.data(), dv_.data(), r_.data(), z_.data(), size);
     }
 #endif
@@ -330,8 +331,8 @@ IntegratorResult ImplicitIntegrator::predict_velocities(const ClothModel& model,
     const double rz_next = r_.dot(z_);
     const double c = rz_next / rz;
     done = 0;
-#if defined(CLOTHCD_AVX2_PATHS)
-    if (avx2_supported()) done = cg_direction_avx2(c, z_.data(), p_.data(), size);
+#if defined(CLOTHCD_SIMD_X86)
+    if (simd_level() >= SimdLevel::Avx2) done = cg_direction_avx2(c, z_.data(), p_.data(), size);
 #endif
     p_.tail(size - done) = z_.tail(size - done) + c * p_.tail(size - done);
     rz = rz_next;

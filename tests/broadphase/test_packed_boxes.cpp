@@ -9,39 +9,29 @@
 #include <random>
 #include <vector>
 
+#include "broadphase/leaf_pairs.hpp"
 #include "clothcd/broadphase/packed_boxes.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd_limit.hpp"
 
 namespace {
 
 using clothcd::broadphase::FlatBox;
-using clothcd::broadphase::lane_bits;
 using clothcd::broadphase::pack_box;
 using clothcd::broadphase::PackedBoxes;
 using clothcd::broadphase::PackedVertexIds;
-using clothcd::avx2_supported;
+using clothcd::SimdLevel;
+using clothcd::broadphase::detail::packed_lane_width;
 
-// The lane widths this machine runs: 4, and 8 where the CPU has AVX2.
-std::vector<int> lane_widths() {
-  if (avx2_supported()) return {4, 8};
-  return {4};
+// Bits of box j's group of lanes overlapping `q` at `level`.
+unsigned overlap_bits(const PackedBoxes& packed, SimdLevel level, int j, const clothcd::broadphase::PackedBox& q) {
+  return clothcd::broadphase::detail::packed_overlap_bits(level, packed, j, q);
 }
 
-// Bits of box j's group of `width` lanes overlapping `q`.
-unsigned overlap_bits(const PackedBoxes& packed, int width, int j, const clothcd::broadphase::PackedBox& q) {
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (width == 8) return packed.overlap_bits8(j, q);
-#endif
-  (void)width;
-  return lane_bits(packed.overlap_lanes(j, q));
-}
-
-// Bits of primitive j's group of `width` lanes using vertex v, or for edges (per = 2) v or w (per = 3: faces).
-unsigned uses_bits(const PackedVertexIds& packed, int per, int width, int j, int v, int w) {
-#if defined(CLOTHCD_AVX2_PATHS)
-  if (width == 8) return per == 2 ? packed.edge_uses_bits8(j, v, w) : packed.face_uses_bits8(j, v);
-#endif
-  (void)width;
-  return lane_bits(per == 2 ? packed.edge_uses_lanes(j, v, w) : packed.face_uses_lanes(j, v));
+// Bits of primitive j's group of lanes using vertex v, or for edges (per = 2) v or w (per = 3: faces), at `level`.
+unsigned uses_bits(const PackedVertexIds& packed, int per, SimdLevel level, int j, int v, int w) {
+  return per == 2 ? clothcd::broadphase::detail::packed_edge_uses_bits(level, packed, j, v, w)
+                  : clothcd::broadphase::detail::packed_face_uses_bits(level, packed, j, v);
 }
 
 // A double of random sign, mantissa and binary exponent in [min_exp, max_exp].
@@ -75,7 +65,7 @@ TEST_CASE("packed boxes contain the double boxes at every magnitude", "[broadpha
   }
 }
 
-TEST_CASE("packed rows (four boxes at a time where AVX2 runs) hold exactly pack_box's floats", "[broadphase][packed]") {
+TEST_CASE("packed rows (at every SIMD level) hold exactly pack_box's floats", "[broadphase][packed]") {
   std::mt19937_64 rng(53);
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -90,16 +80,19 @@ TEST_CASE("packed rows (four boxes at a time where AVX2 runs) hold exactly pack_
         b.max[k] = pick_special ? special[rng() % special.size()] : random_double(rng, -40, 40);
       }
     }
-    PackedBoxes packed;
-    packed.assign(boxes);
-    for (int j = 0; j < count; ++j) {
-      const clothcd::broadphase::PackedBox row = packed.at(j), single = pack_box(boxes[j]);
-      REQUIRE(std::memcmp(&row, &single, sizeof row) == 0);
+    for (const SimdLevel level : clothcd::cpu_simd_levels()) {
+      clothcd::test::SimdLimit capped(level);
+      PackedBoxes packed;
+      packed.assign(boxes);
+      for (int j = 0; j < count; ++j) {
+        const clothcd::broadphase::PackedBox row = packed.at(j), single = pack_box(boxes[j]);
+        REQUIRE(std::memcmp(&row, &single, sizeof row) == 0);
+      }
     }
   }
 }
 
-TEST_CASE("packed overlap lanes (four and eight wide) never separate overlapping boxes and ignore padding", "[broadphase][packed]") {
+TEST_CASE("packed overlap lanes (at every SIMD level) never separate overlapping boxes and ignore padding", "[broadphase][packed]") {
   std::mt19937_64 rng(43);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<int> count(1, 13);
@@ -116,10 +109,11 @@ TEST_CASE("packed overlap lanes (four and eight wide) never separate overlapping
     packed.assign(boxes);
     REQUIRE(packed.size() == static_cast<int>(boxes.size()));
     const auto packed_q = pack_box(q);
-    for (const int width : lane_widths()) {
+    for (const SimdLevel level : clothcd::cpu_simd_levels()) {
+      const int width = packed_lane_width(level);
       int passes = 0, overlaps = 0;
       for (int j = 0; j < packed.size(); j += width) {
-        const unsigned bits = overlap_bits(packed, width, j, packed_q);
+        const unsigned bits = overlap_bits(packed, level, j, packed_q);
         for (int k = 0; k < width; ++k) {
           const bool lane = ((bits >> k) & 1u) != 0;
           if (j + k >= packed.size()) {
@@ -147,11 +141,12 @@ TEST_CASE("packed vertex-index lanes agree with a scalar comparison", "[broadpha
     PackedVertexIds packed;
     packed.assign(ids, per);
     const int primitives = static_cast<int>(ids.size()) / per;
-    for (const int width : lane_widths()) {
+    for (const SimdLevel level : clothcd::cpu_simd_levels()) {
+      const int width = packed_lane_width(level);
       for (int v = 0; v < 10; ++v) {
         const int w = per == 2 ? (v * 7 + 3) % 10 : v;  // edges: a second vertex, sometimes v itself
         for (int j = 0; j < primitives; ++j) {
-          const unsigned bits = uses_bits(packed, per, width, j, v, w);
+          const unsigned bits = uses_bits(packed, per, level, j, v, w);
           for (int k = 0; k < width; ++k) {
             bool uses = false;
             if (j + k < primitives) {

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "clothcd/simd_level.hpp"
 #include "ccd/ccd_test_support.hpp"
 #include "ccd/decimal_touches.hpp"
 #include "ccd/projection_block.hpp"
@@ -144,9 +145,9 @@ TEST_CASE("decimal touches: exact and near touches with decimal coordinates agai
   }
 
   SECTION("the block projection filter culls no reference collision on any instruction set") {
-    for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+    for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
       for (const bool use_normals : {false, true}) {
-        INFO("instruction set " << static_cast<int>(isa) << ", primitive normals " << use_normals);
+        INFO("instruction set " << clothcd::simd_level_name(isa) << ", primitive normals " << use_normals);
         Failures culled_pairs;
         std::vector<std::uint8_t> culled;
         for_each_group([&](const std::vector<ccd::CcdQuery>& queries, double thickness) {

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "clothcd/simd_level.hpp"
 #include "ccd/pair_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
@@ -125,7 +126,7 @@ TEST_CASE("cull_pairs keeps exactly what the reference filters keep", "[ccd][blo
         ccd::nonpenetration_filter_culls(pairs[i], settings);
     if (!projected && !nonpenetration) expected.push_back(i);
   }
-  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+  for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
     PairBlock block(200);
     fill(block, pairs);
     std::vector<std::uint8_t> scratch;

@@ -11,7 +11,7 @@
 #include "ccd/projection_block.hpp"
 #include "ccd/sampled_distance.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
 
 namespace {
 
@@ -99,13 +99,13 @@ int check_same_verdicts(const std::vector<ccd::CcdQuery>& queries, double thickn
   const ccd::CcdSettings settings{thickness};
   const ccd::ProjectionFilterOptions options{normals};
   int count = 0;
-  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+  for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
     std::vector<std::uint8_t> culled;
     ccd::detail::projection_filter_queries(queries, settings, options, culled, isa);
     REQUIRE(culled.size() == queries.size());
     count = 0;
     for (std::size_t i = 0; i < queries.size(); ++i) {
-      INFO("query " << i << " thickness " << thickness << " normals " << normals << " isa " << static_cast<int>(isa));
+      INFO("query " << i << " thickness " << thickness << " normals " << normals << " isa " << clothcd::simd_level_name(isa));
       CHECK(static_cast<bool>(culled[i]) == ccd::projection_filter_culls(queries[i], settings, options));
       count += culled[i];
     }
@@ -143,16 +143,6 @@ TEST_CASE("block projection filter: the per-pair filter's verdicts on degenerate
   }
 }
 
-TEST_CASE("block projection filter: every instruction set this CPU runs is tested", "[ccd][filters]") {
-  const std::vector<ccd::detail::BlockIsa> isas = ccd::detail::supported_block_isas();
-  REQUIRE_FALSE(isas.empty());
-  CHECK(isas.front() == ccd::detail::BlockIsa::Baseline);
-  CHECK(isas.back() == ccd::detail::fastest_block_isa());
-  CHECK((std::find(isas.begin(), isas.end(), ccd::detail::BlockIsa::Avx2) != isas.end()) == clothcd::avx2_supported());
-  CHECK((std::find(isas.begin(), isas.end(), ccd::detail::BlockIsa::Avx512) != isas.end()) ==
-        clothcd::avx512_supported());
-}
-
 TEST_CASE("block projection filter: partly filled and mixed-kind blocks", "[ccd][filters]") {
   PairMaker maker(79);
   for (const int n : {1, 2, 15, 16, 17, 31, 33, 50}) {
@@ -174,12 +164,12 @@ TEST_CASE("block projection filter never drops a pair that comes within the thic
   for (int i = 0; i < 1500; ++i) {
     queries.push_back(maker.resting_pair(maker.kind(), thickness * maker.uniform(0.2, 1.5)));
   }
-  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+  for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
     std::vector<std::uint8_t> culled;
     ccd::detail::projection_filter_queries(queries, settings, ccd::ProjectionFilterOptions{true}, culled, isa);
     int within = 0;
     for (std::size_t i = 0; i < queries.size(); ++i) {
-      INFO("query " << i << " isa " << static_cast<int>(isa));
+      INFO("query " << i << " isa " << clothcd::simd_level_name(isa));
       if (culled[i]) CHECK(ccd::continuous_collision(queries[i], settings).state != ccd::CcdState::Hit);
       if (i % 5 == 0 && clothcd::test::sampled_min_distance(queries[i], 20, 32) <= thickness) {
         ++within;
@@ -206,8 +196,8 @@ TEST_CASE("block projection filter keeps pairs with huge or tiny coordinates", "
     tiny.push_back(small);
   }
   const ccd::ProjectionFilterOptions normals{true};
-  for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
-    INFO("isa " << static_cast<int>(isa));
+  for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
+    INFO("isa " << clothcd::simd_level_name(isa));
     std::vector<std::uint8_t> culled;
     ccd::detail::projection_filter_queries(huge, ccd::CcdSettings{0.0}, normals, culled, isa);
     for (const std::uint8_t c : culled) CHECK(c == 0);
@@ -246,14 +236,14 @@ TEST_CASE("block projection filter: the Normals pass and the AfterNormals pass t
                                         : maker.random_pair(block.kind, 0.05, 0.01));
       }
       block.pad_unused();
-      for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
+      for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
         std::uint8_t all[ccd::detail::QueryBlock::kLanes], first[ccd::detail::QueryBlock::kLanes],
             second[ccd::detail::QueryBlock::kLanes];
         ccd::detail::projection_filter_block(block, settings, normals, all, isa, BlockPass::All);
         ccd::detail::projection_filter_block(block, settings, normals, first, isa, BlockPass::Normals);
         ccd::detail::projection_filter_block(block, settings, normals, second, isa, BlockPass::AfterNormals);
         for (int lane = 0; lane < block.count; ++lane) {
-          INFO("block " << b << " lane " << lane << " isa " << static_cast<int>(isa));
+          INFO("block " << b << " lane " << lane << " isa " << clothcd::simd_level_name(isa));
           CHECK(static_cast<bool>(all[lane]) == (first[lane] || second[lane]));
           only_normals += first[lane] && !second[lane];
           only_after += second[lane] && !first[lane];
@@ -276,8 +266,8 @@ TEST_CASE("block projection filter keeps pairs with a NaN or infinite coordinate
     queries.push_back(q);
   }
   for (const bool normals : {false, true}) {
-    for (const ccd::detail::BlockIsa isa : ccd::detail::supported_block_isas()) {
-      INFO("isa " << static_cast<int>(isa) << " normals " << normals);
+    for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
+      INFO("isa " << clothcd::simd_level_name(isa) << " normals " << normals);
       std::vector<std::uint8_t> culled;
       ccd::detail::projection_filter_queries(queries, ccd::CcdSettings{0.004}, ccd::ProjectionFilterOptions{normals},
                                              culled, isa);

@@ -10,10 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/cpu_features.hpp"
+#include "clothcd/simd_level.hpp"
 #include "clothcd/learning/pair_classifier.hpp"
 #include "learning/opennn_backend.hpp"
 #include "learning/trained_model_fixture.hpp"
+#include "support/simd_limit.hpp"
 
 using namespace clothcd::learning;
 namespace fs = std::filesystem;
@@ -58,11 +59,19 @@ TEST_CASE("the batched forward pass matches OpenNN's calculate_outputs to 1e-12"
   std::vector<double> ours(rows);
   classifier.probabilities(batch, ours.data());
   // The AVX2 / AVX-512 builds of the forward pass (where this CPU has them) give the baseline's bits.
-  clothcd::set_wide_paths_enabled(false);
   std::vector<double> baseline(rows);
-  classifier.probabilities(batch, baseline.data());
-  clothcd::set_wide_paths_enabled(true);
+  {
+    clothcd::test::SimdLimit capped(clothcd::SimdLevel::Baseline);
+    classifier.probabilities(batch, baseline.data());
+  }
   CHECK(baseline == ours);
+  for (const clothcd::SimdLevel level : clothcd::cpu_simd_levels()) {
+    INFO("level " << clothcd::simd_level_name(level));
+    clothcd::test::SimdLimit capped(level);
+    std::vector<double> at_level(rows);
+    classifier.probabilities(batch, at_level.data());
+    CHECK(at_level == baseline);
+  }
 
   const NetworkWeights& weights = classifier.weights();
   std::vector<double> inputs;

@@ -9,10 +9,14 @@
 #include <vector>
 
 #include "clothcd/learning/pair_features.hpp"
+#include "clothcd/simd_level.hpp"
 #include "learning/pair_feature_block.hpp"
 #include "learning/pair_test_data.hpp"
 
 using namespace clothcd::learning;
+using clothcd::cpu_simd_levels;
+using clothcd::simd_level_name;
+using clothcd::SimdLevel;
 
 namespace {
 
@@ -63,15 +67,15 @@ std::vector<PairGeometry> degenerate_pairs() {
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
 void check_against_per_pair(const std::vector<PairGeometry>& pairs, std::size_t features) {
-  for (const bool wide : {false, true}) {
+  for (const SimdLevel level : cpu_simd_levels()) {
     PairFeatureBatch batch;
     batch.resize(pairs.size(), features);
-    detail::compute_feature_blocks(pairs.data(), pairs.size(), features, wide, batch);
+    detail::compute_feature_blocks(pairs.data(), pairs.size(), features, level, batch);
     std::vector<double> row(features);
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       compute_pair_features(pairs[i], FeatureSettings{features}, row.data());
       for (std::size_t f = 0; f < features; ++f) {
-        INFO("pair " << i << " feature " << f << " wide " << wide << ": " << batch.column(f)[i] << " vs " << row[f]);
+        INFO("pair " << i << " feature " << f << " level " << simd_level_name(level) << ": " << batch.column(f)[i] << " vs " << row[f]);
         CHECK(same_bits(batch.column(f)[i], row[f]));
       }
     }

@@ -39,9 +39,6 @@ struct TraversalSettings {
   /// descent skips the subtrees without a moved vertex. Must stay valid during the call; its size must be that body's
   /// vertex count.
   const std::vector<std::uint8_t>* moved_vertices = nullptr;
-  /// Test leaf primitives eight at a time where the CPU has AVX2 (clothcd::avx2_supported()), else four at a time. The
-  /// result is the same either way.
-  bool wide_lanes = true;
   /// Searches that hand their candidates to a CandidateSink: a task passes its candidates on once it holds this many
   /// (>= 1; a chunk may exceed it by the pairs of one leaf pair).
   std::size_t chunk_pairs = 1024;

@@ -29,7 +29,7 @@ class SupportPoints {
 
   /// {min, max} over the points p of direction . p in one walk over the groups: exactly {-max_dot(-direction),
   /// max_dot(direction)} (negating the direction negates every product exactly), {+infinity, -infinity} when empty.
-  /// Sets of at most kScanAll points are scanned whole, four points at a time, where the CPU has AVX2.
+  /// Sets of at most kScanAll points are scanned whole, four points at a time, from clothcd::SimdLevel::Avx2 up.
   [[nodiscard]] std::pair<double, double> min_max_dot(const Eigen::Vector3d& direction) const;
 
   /// The most points min_max_dot scans whole instead of walking the groups.

@@ -42,7 +42,7 @@ class ImplicitIntegrator {
 
  private:
   /// Per-spring linearisation S q = alpha n (n . q) + beta q for a relative vector q = p_a - p_b, one array per field
-  /// (the product takes four springs at a time where the CPU has AVX2).
+  /// (the product takes four springs at a time from clothcd::SimdLevel::Avx2 up).
   struct SpringBlocks {
     std::vector<double> n0, n1, n2;  ///< Unit direction n of each spring.
     std::vector<double> alpha, beta;

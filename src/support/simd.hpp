@@ -1,0 +1,143 @@
+#pragma once
+// The library's fixed-width vector layer (internal; public headers never include it). A kernel is written once on it
+// and compiled for every level of clothcd::SimdLevel; the caller picks the compiled version from simd_level().
+//
+// Types are the compiler's vector extension (GCC and Clang, any architecture): four or eight float or 32-bit integer
+// lanes, four double lanes. Arithmetic and comparisons are the built-in operators (a comparison gives an integer
+// vector of lane masks, all ones or zero; the library is built without contraction, so products are never fused and
+// a kernel gives the same bits at every width). Each width's namespace (w4, w8) names its types and adds what the
+// operators do not say: unaligned loads, lane masks as bits, dropping the bits past a range's end, and widening a row
+// of lane numbers to positions.
+//
+// The eight-lane operations need AVX: they are compiled for it (CLOTHCD_SIMD_AVX2 below) and may only
+// run inside code compiled the same way. A kernel that uses them is written in a header of its own and included twice:
+// once as is, for the baseline with four lanes, and once between CLOTHCD_SIMD_BEGIN_AVX2 and CLOTHCD_SIMD_END, so that
+// every function and lambda it defines is compiled for AVX2 (see broadphase/leaf_pair_lanes.hpp).
+#include <cstdint>
+#include <cstring>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+/// Defined where the AVX2 and AVX-512 versions of the kernels are compiled in (x86-64 with GCC or Clang).
+#define CLOTHCD_SIMD_X86 1
+#include <immintrin.h>
+/// Marks one function compiled for AVX2 and BMI2 (called only where simd_level() >= SimdLevel::Avx2).
+#define CLOTHCD_SIMD_AVX2 __attribute__((target("avx2,bmi2")))
+/// Marks one function compiled for AVX-512F (called only where simd_level() == SimdLevel::Avx512).
+#define CLOTHCD_SIMD_AVX512 __attribute__((target("avx2,bmi2,avx512f")))
+#if defined(__clang__)
+#define CLOTHCD_SIMD_BEGIN_AVX2 \
+  _Pragma("clang attribute push(__attribute__((target(\"avx2,bmi2\"))), apply_to = function)")
+#define CLOTHCD_SIMD_END _Pragma("clang attribute pop")
+#else
+/// Every function defined from here to CLOTHCD_SIMD_END is compiled for AVX2 and BMI2.
+#define CLOTHCD_SIMD_BEGIN_AVX2 _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,bmi2\")")
+/// Ends CLOTHCD_SIMD_BEGIN_AVX2.
+#define CLOTHCD_SIMD_END _Pragma("GCC pop_options")
+#endif
+#endif
+
+namespace clothcd::simd {
+
+/// Four float lanes.
+using F32x4 = float __attribute__((vector_size(16)));
+/// Four 32-bit integer lanes (also the lane masks of F32x4 comparisons).
+using I32x4 = std::int32_t __attribute__((vector_size(16)));
+/// Eight float lanes (AVX).
+using F32x8 = float __attribute__((vector_size(32)));
+/// Eight 32-bit integer lanes (also the lane masks of F32x8 comparisons; AVX).
+using I32x8 = std::int32_t __attribute__((vector_size(32)));
+/// Four double lanes (AVX).
+using F64x4 = double __attribute__((vector_size(32)));
+
+// ---- four float or int lanes: the baseline (SSE2 on x86-64, NEON on ARM, scalar code elsewhere) ----
+namespace w4 {
+
+/// Lanes per vector.
+inline constexpr int kWidth = 4;
+/// Float lanes.
+using Floats = F32x4;
+/// Integer lanes, and the masks of comparisons.
+using Ints = I32x4;
+
+/// kWidth values from p (any alignment).
+[[gnu::always_inline]] inline Floats load(const float* p) {
+  Floats v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// kWidth values from p (any alignment).
+[[gnu::always_inline]] inline Ints load(const std::int32_t* p) {
+  Ints v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// Bit k set when lane k of `mask` is true (all ones).
+[[gnu::always_inline]] inline unsigned bits(Ints mask) {
+#if defined(__SSE2__)
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(reinterpret_cast<__m128i>(mask))));
+#else
+  return static_cast<unsigned>((mask[0] & 1) | (mask[1] & 2) | (mask[2] & 4) | (mask[3] & 8));
+#endif
+}
+
+/// `bits` without the bits at and above `count` (count >= 0; kWidth or more keeps them all).
+[[gnu::always_inline]] inline unsigned bits_below(unsigned bits, int count) {
+  return bits & ((1u << (count < kWidth ? count : kWidth)) - 1u);
+}
+
+/// out[k] = lanes[k] + offset for the kWidth bytes at `lanes`.
+[[gnu::always_inline]] inline void widen_add(const std::uint8_t* lanes, std::int32_t offset, std::int32_t* out) {
+  for (int k = 0; k < kWidth; ++k) out[k] = lanes[k] + offset;
+}
+
+}  // namespace w4
+
+#if defined(CLOTHCD_SIMD_X86)
+// ---- eight float or int lanes: AVX2 ----
+namespace w8 {
+
+/// Lanes per vector.
+inline constexpr int kWidth = 8;
+/// Float lanes.
+using Floats = F32x8;
+/// Integer lanes, and the masks of comparisons.
+using Ints = I32x8;
+
+/// kWidth values from p (any alignment).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Floats load(const float* p) {
+  Floats v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// kWidth values from p (any alignment).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Ints load(const std::int32_t* p) {
+  Ints v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// Bit k set when lane k of `mask` is true (all ones).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline unsigned bits(Ints mask) {
+  return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
+}
+
+/// `bits` without the bits at and above `count` (count >= 0; kWidth or more keeps them all).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline unsigned bits_below(unsigned bits, int count) {
+  return _bzhi_u32(bits, static_cast<unsigned>(count));
+}
+
+/// out[k] = lanes[k] + offset for the kWidth bytes at `lanes` (one store).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void widen_add(const std::uint8_t* lanes, std::int32_t offset,
+                                                             std::int32_t* out) {
+  const __m256i wide = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(lanes)));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_add_epi32(wide, _mm256_set1_epi32(offset)));
+}
+
+}  // namespace w8
+
+#endif
+
+}  // namespace clothcd::simd
