@@ -109,6 +109,7 @@ struct CollisionDetector::Impl {
   DetectorSettings settings;
   ccd::CcdFilter filter = ccd::CcdFilter::None;
   std::shared_ptr<const PairCuller> culler;  // CullingMode::Network only
+  BlockObserver observer;                    // set_block_observer
   Body cloth;
   std::vector<Body> obstacles;
   std::unique_ptr<detail::PairPipeline> pipeline;  // culling and exact test of the candidates as they are found
@@ -187,6 +188,7 @@ struct CollisionDetector::Impl {
     pipeline_settings.projection = ccd::ProjectionFilterOptions{settings.projection_normals};
     pipeline_settings.culler = culler.get();
     pipeline_settings.exact = exact;
+    pipeline_settings.observer = exact && observer ? &observer : nullptr;
     pipeline->begin(frames, keys, pipeline_settings);
 
     broadphase::TraversalSettings traversal{settings.parallel, only_moved ? &moved : nullptr};
@@ -368,5 +370,7 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
 }
 
 const DetectionStats& CollisionDetector::stats() const { return impl_->stats; }
+
+void CollisionDetector::set_block_observer(BlockObserver observer) { impl_->observer = std::move(observer); }
 
 }  // namespace clothcd

@@ -60,7 +60,8 @@ void PairPipeline::consume(const broadphase::CandidateSet& chunk) {
       start[k] = row(body.start, v[k].vertex);
       end[k] = row(body.end, v[k].vertex);
     }
-    w.block.push(v, key, start, end);
+    w.keys[static_cast<std::size_t>(w.block.size())] = key;
+    w.block.push(v, static_cast<std::uint64_t>(w.block.size()), start, end);
   };
   w.block.reset(PairKind::VertexFace);
   for (const broadphase::VertexFaceCandidate& c : chunk.vertex_face) {
@@ -90,6 +91,12 @@ void PairPipeline::run_block(Worker& w) const {
   const int n = block.size();
   if (n == 0) return;
   const PipelineSettings& s = *settings_;
+  if (s.observer != nullptr) {
+    if (!w.observed) w.observed = std::make_unique<ccd::PairBlock>(block.capacity());
+    *w.observed = block;
+    w.observed_culled.assign(static_cast<std::size_t>(n), 1);
+    w.observed_colliding.assign(static_cast<std::size_t>(n), 0);
+  }
   auto t = StageClock::now();
   // Survivors [0, filtered) passed the filters `applied`; the culler's Keep pairs behind them met no filter.
   int filtered = 0, survivors = 0;
@@ -112,8 +119,9 @@ void PairPipeline::run_block(Worker& w) const {
       const ccd::CcdResult r =
           ccd::continuous_collision_after_filter(block.query(i), s.ccd, i < filtered ? applied : ccd::CcdFilter::None);
       if (!r.hit) continue;
+      if (s.observer != nullptr) w.observed_colliding[block.tag(i)] = 1;
       KeyedCollision& h = hits.emplace_back();
-      h.key = block.tag(i);
+      h.key = w.keys[block.tag(i)];
       h.collision.kind = block.kind();
       h.collision.vertices = block.vertices(i);
       h.collision.toi = r.toi;
@@ -123,7 +131,18 @@ void PairPipeline::run_block(Worker& w) const {
     }
     w.counts.exact_ms += milliseconds_since(t);
   }
+  if (s.observer != nullptr) show_block(w, survivors);
   block.reset(block.kind());
+}
+
+void PairPipeline::show_block(Worker& w, int survivors) const {
+  for (int i = 0; i < survivors; ++i) w.observed_culled[w.block.tag(i)] = 0;
+  ObservedBlock seen;
+  seen.pairs = w.observed.get();
+  seen.keys = w.keys.data();
+  seen.culled = w.observed_culled.data();
+  seen.colliding = w.observed_colliding.data();
+  (*settings_->observer)(seen);
 }
 
 void PairPipeline::finish(std::vector<KeyedCollision>& vertex_face, std::vector<KeyedCollision>& edge_edge,

@@ -6,6 +6,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/pair_block.hpp"
+#include "clothcd/detection/block_observer.hpp"
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/pair_culler.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
@@ -61,6 +63,7 @@ struct PipelineSettings {
   ccd::ProjectionFilterOptions projection;           ///< Directions of the projection filter.
   const PairCuller* culler = nullptr;                ///< When set: the culler, with the combined filters behind it.
   bool exact = true;  ///< False: only count the candidates and the culled pairs (no exact test, no collisions).
+  const BlockObserver* observer = nullptr;  ///< When set: shown every block after its exact test.
 };
 
 /// Counts and thread times of the pipeline (times summed over threads).
@@ -93,10 +96,13 @@ class PairPipeline final : public broadphase::CandidateSink {
   void finish(std::vector<KeyedCollision>& vertex_face, std::vector<KeyedCollision>& edge_edge, PipelineCounts& counts);
 
  private:
-  // One thread's block, scratch, collisions and counts.
+  // One thread's block, scratch, collisions and counts. The block's tags are the pairs' indices into `keys`.
   struct Worker {
-    explicit Worker(int block_pairs) : block(block_pairs) {}
+    explicit Worker(int block_pairs) : block(block_pairs), keys(static_cast<std::size_t>(block.capacity())) {}
     ccd::PairBlock block;
+    std::vector<std::uint64_t> keys;                      // sort key of each pair pushed, by tag
+    std::unique_ptr<ccd::PairBlock> observed;             // with an observer: the block before culling
+    std::vector<std::uint8_t> observed_culled, observed_colliding;  // with an observer: per pair, by tag
     std::vector<std::uint8_t> culled;                     // cull_pair_block's scratch
     CullerScratch culler;                                 // network mode: cull_with_culler's scratch
     std::vector<KeyedCollision> vertex_face, edge_edge;  // collisions found
@@ -104,6 +110,7 @@ class PairPipeline final : public broadphase::CandidateSink {
   };
 
   void run_block(Worker& w) const;
+  void show_block(Worker& w, int survivors) const;
 
   const std::vector<BodyFrames>* bodies_ = nullptr;
   const PairKeys* keys_ = nullptr;

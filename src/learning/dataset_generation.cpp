@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
+#include <utility>
 #include <stdexcept>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/bvh.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
-#include "clothcd/broadphase/traversal.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/simulation/scene.hpp"
 #include "clothcd/simulation/simulator.hpp"
 #include "learning/split_mix64.hpp"
@@ -29,64 +28,46 @@ std::vector<std::size_t> sample_indices(std::size_t n, std::size_t keep, SplitMi
   return index;
 }
 
-struct Body {
-  broadphase::BodyTopology topology;
-  broadphase::SweptBoxes boxes;
-  broadphase::Bvh bvh;
-  Vertices start, end;
+// A candidate pair of a step as the detector's block observer showed it, with its canonical order key.
+struct StepPair {
+  PairKind kind = PairKind::VertexFace;
+  std::uint64_t key = 0;
+  ccd::CcdQuery query;
 };
 
-void refresh(Body& body, double thickness) {
-  broadphase::compute_swept_boxes(body.topology, body.start, body.end, thickness, body.boxes);
-  body.bvh = broadphase::Bvh();
-  body.bvh.build(body.topology, body.boxes, body.start, body.end);
-}
-
-broadphase::BodyView view(const Body& body, int id) { return {id, &body.topology, &body.boxes, &body.bvh}; }
-
-ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::VertexFaceCandidate& c) {
-  ccd::CcdQuery q;
-  q.kind = PairKind::VertexFace;
-  const Body& vb = bodies[static_cast<std::size_t>(c.vertex_body)];
-  const Body& fb = bodies[static_cast<std::size_t>(c.face_body)];
-  q.start[0] = vb.start.row(c.vertex).transpose();
-  q.end[0] = vb.end.row(c.vertex).transpose();
-  for (int k = 0; k < 3; ++k) {
-    const int v = fb.topology.faces(c.face, k);
-    q.start[static_cast<std::size_t>(k + 1)] = fb.start.row(v).transpose();
-    q.end[static_cast<std::size_t>(k + 1)] = fb.end.row(v).transpose();
+// Records the candidate pairs of each detect() call of `detector` (blocks come from several threads).
+class StepRecorder {
+ public:
+  explicit StepRecorder(CollisionDetector& detector) {
+    detector.set_block_observer([this](const ObservedBlock& b) { add(b); });
   }
-  return q;
-}
-
-ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::EdgeEdgeCandidate& c) {
-  ccd::CcdQuery q;
-  q.kind = PairKind::EdgeEdge;
-  const Body& a = bodies[static_cast<std::size_t>(c.body_a)];
-  const Body& b = bodies[static_cast<std::size_t>(c.body_b)];
-  for (int k = 0; k < 2; ++k) {
-    const int va = a.topology.edges[static_cast<std::size_t>(2 * c.edge_a + k)];
-    const int vb = b.topology.edges[static_cast<std::size_t>(2 * c.edge_b + k)];
-    q.start[static_cast<std::size_t>(k)] = a.start.row(va).transpose();
-    q.end[static_cast<std::size_t>(k)] = a.end.row(va).transpose();
-    q.start[static_cast<std::size_t>(k + 2)] = b.start.row(vb).transpose();
-    q.end[static_cast<std::size_t>(k + 2)] = b.end.row(vb).transpose();
+  // The pairs recorded since the last call in canonical order (vertex-face first, each kind by key, the order of
+  // broadphase::sort_candidates); empties the record.
+  std::vector<StepPair> take_sorted() {
+    std::vector<StepPair> sorted;
+    sorted.swap(pairs_);
+    std::sort(sorted.begin(), sorted.end(), [](const StepPair& a, const StepPair& b) {
+      return std::make_pair(a.kind, a.key) < std::make_pair(b.kind, b.key);
+    });
+    return sorted;
   }
-  return q;
-}
 
-ccd::CcdQuery make_query(const std::vector<Body>& bodies, const broadphase::CandidateSet& candidates, std::size_t i) {
-  const std::size_t vf = candidates.vertex_face.size();
-  return i < vf ? make_query(bodies, candidates.vertex_face[i]) : make_query(bodies, candidates.edge_edge[i - vf]);
-}
+ private:
+  void add(const ObservedBlock& b) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (int i = 0; i < b.pairs->size(); ++i) pairs_.push_back({b.pairs->kind(), b.keys[i], b.pairs->query(i)});
+  }
 
-// `sampled` (sorted) plus every candidate the exact CCD finds colliding, sorted and without repeats.
-std::vector<std::size_t> add_collisions(std::vector<std::size_t> sampled, const std::vector<Body>& bodies,
-                                        const broadphase::CandidateSet& candidates, const ccd::CcdSettings& settings,
-                                        std::size_t& collisions_seen) {
+  std::mutex mutex_;
+  std::vector<StepPair> pairs_;
+};
+
+// `sampled` (sorted) plus every pair the exact CCD finds colliding, sorted and without repeats.
+std::vector<std::size_t> add_collisions(std::vector<std::size_t> sampled, const std::vector<StepPair>& pairs,
+                                        const ccd::CcdSettings& settings, std::size_t& collisions_seen) {
   const std::size_t sampled_count = sampled.size();
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const ccd::CcdQuery q = make_query(bodies, candidates, i);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const ccd::CcdQuery& q = pairs[i].query;
     if (ccd::combined_filters_cull(q, settings) || !ccd::continuous_collision(q, settings).hit) continue;
     ++collisions_seen;
     sampled.push_back(i);
@@ -183,41 +164,35 @@ GeneratedDataset generate_pair_dataset(const DatasetGenerationSettings& settings
         simulation::Simulator simulator(scene, sim_settings);
         const std::string label = scene_name + "-" + cloth + "-" + std::to_string(seed);
 
-        std::vector<Body> bodies(1 + scene.obstacles.size());
-        bodies[0].topology = broadphase::build_body_topology(scene.cloth.faces,
-                                                             static_cast<int>(scene.cloth.vertices.rows()));
-        for (std::size_t k = 0; k < scene.obstacles.size(); ++k)
-          bodies[k + 1].topology = broadphase::build_body_topology(
-              scene.obstacles[k].rest.faces, static_cast<int>(scene.obstacles[k].rest.vertices.rows()));
-
-        broadphase::CandidateSet candidates;
-        const broadphase::TraversalSettings traversal{false};
+        // The detector the simulator would run on this motion, with its broad phase's swept boxes inflated by the
+        // response thickness; its block observer records every candidate pair of a step.
+        DetectorSettings detector_settings;
+        detector_settings.hierarchy = HierarchyKind::Aabb;
+        detector_settings.thickness = settings.box_thickness;
+        detector_settings.reuse_unchanged = false;
+        CollisionDetector detector(scene.cloth.faces, static_cast<int>(scene.cloth.vertices.rows()), detector_settings);
+        for (const simulation::Obstacle& obstacle : scene.obstacles) detector.add_obstacle(obstacle.rest);
+        StepRecorder recorder(detector);
         for (int step = 0; step < settings.steps; ++step) {
           const int s = simulator.steps_taken();
-          bodies[0].start = simulator.state().positions;
+          const Vertices& start = simulator.state().positions;
           // Free flight under gravity, as the integrator's prediction before any response (springs left out).
           const Eigen::RowVector3d fall = sim_settings.dt * sim_settings.dt * sim_settings.cloth.gravity.transpose();
-          bodies[0].end = bodies[0].start + sim_settings.dt * simulator.state().velocities;
-          bodies[0].end.rowwise() += fall;
-          refresh(bodies[0], settings.box_thickness);
+          Vertices end = start + sim_settings.dt * simulator.state().velocities;
+          end.rowwise() += fall;
           for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
-            bodies[k + 1].start = scene.obstacles[k].positions_at(s);
-            bodies[k + 1].end = scene.obstacles[k].positions_at(s + 1);
-            refresh(bodies[k + 1], settings.box_thickness);
+            detector.set_obstacle_positions(static_cast<int>(k) + 1, scene.obstacles[k].positions_at(s),
+                                            scene.obstacles[k].positions_at(s + 1));
           }
-          candidates.clear();
-          broadphase::find_self_candidates(view(bodies[0], 0), traversal, candidates);
-          for (std::size_t k = 1; k < bodies.size(); ++k)
-            broadphase::find_pair_candidates(view(bodies[0], 0), view(bodies[k], static_cast<int>(k)), traversal,
-                                             candidates);
-          broadphase::sort_candidates(candidates);
-          out.candidates_seen += candidates.size();
+          detector.detect(start, end);
+          const std::vector<StepPair> pairs = recorder.take_sorted();
+          out.candidates_seen += pairs.size();
 
-          std::vector<std::size_t> chosen = sample_indices(candidates.size(), per_step, sampler);
+          std::vector<std::size_t> chosen = sample_indices(pairs.size(), per_step, sampler);
           if (settings.keep_collisions)
-            chosen = add_collisions(std::move(chosen), bodies, candidates, label_settings, out.collisions_seen);
+            chosen = add_collisions(std::move(chosen), pairs, label_settings, out.collisions_seen);
           for (std::size_t i : chosen) {
-            const ccd::CcdQuery q = make_query(bodies, candidates, i);
+            const ccd::CcdQuery& q = pairs[i].query;
             compute_pair_features(q, settings.features, features.data());
             PairRow row;
             row.features = features.data();

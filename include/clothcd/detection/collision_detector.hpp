@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "clothcd/broadphase/hierarchy_kind.hpp"
+#include "clothcd/detection/block_observer.hpp"
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
@@ -123,6 +124,12 @@ class CollisionDetector {
 
   /// Counts and times of the last detect() call.
   [[nodiscard]] const DetectionStats& stats() const;
+
+  /// Shows every later detect() call's candidate pairs to `observer`, block by block, each pair exactly once, with its
+  /// culling and exact-test outcome (see ObservedBlock and BlockObserver's thread rule); an empty function stops it.
+  /// A re-test call (DetectorSettings::reuse_unchanged) shows only the pairs it searches again: the
+  /// DetectionStats::reused pairs keep their last answer and are not shown again. Observing costs a copy of each block.
+  void set_block_observer(BlockObserver observer);
 
  private:
   struct Impl;

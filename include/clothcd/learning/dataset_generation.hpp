@@ -51,10 +51,11 @@ struct GeneratedDataset {
 /// dt negative or not finite, max_rows 0, negative thickness or shift, bad feature count.
 void validate_generation_settings(const DatasetGenerationSettings& settings);
 
-/// Runs every (scene, cloth, seed) for settings.steps steps. For each step the candidate pairs are enumerated by the
-/// broad phase (cloth self pairs and cloth-obstacle pairs) over the step's unresolved motion: start = the cloth at the
-/// start of the step, end = start + dt * velocity + dt^2 * gravity (free flight, the detector's view before the
-/// response), obstacles from their pose at the step to the next. Each step keeps at most an equal share of max_rows
+/// Runs every (scene, cloth, seed) for settings.steps steps. For each step a CollisionDetector (AABB hierarchy, swept
+/// boxes inflated by box_thickness, cloth self pairs and cloth-obstacle pairs) runs on the step's unresolved motion:
+/// start = the cloth at the start of the step, end = start + dt * velocity + dt^2 * gravity (free flight, the
+/// detector's view before the response), obstacles from their pose at the step to the next; its block observer
+/// records every candidate pair, which are then put in canonical order (vertex-face first, each kind by its order key). Each step keeps at most an equal share of max_rows
 /// pairs, sampled uniformly with a seeded RNG; with keep_collisions, every colliding candidate is kept as well (exempt
 /// from the final trim to max_rows). Labels: filter_label = 0 when ccd::combined_filters_cull removes the pair,
 /// exact_label = 1 when ccd::continuous_collision hits, both with thickness 0 (the coordinates' own contact, as the
