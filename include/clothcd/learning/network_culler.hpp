@@ -56,8 +56,10 @@ class NetworkCuller final : public PairCuller {
 
   /// Sets keep[i] = 1 when queries[i] must go to the exact CCD, 0 when culled (keep is resized to queries.size()), as
   /// the detector culls its blocks (cull_with_culler: the network, then the combined block filters behind it). The
-  /// filters use `projection` (default: the paper's five directions only; the detector passes its own choice). Uses
-  /// TBB threads when `parallel`; the result does not depend on it. No allocation once the buffers have grown.
+  /// filters use `projection` (default: the paper's five directions only; the detector passes its own choice); their
+  /// rounding bound is coarser than the per-pair filters' (ccd::combined_filters_cull), so on near-touching pairs they
+  /// may keep a few pairs those cull. Uses TBB threads when `parallel`; the result does not depend on it. No
+  /// allocation once the buffers have grown.
   NetworkCullingStats cull(const std::vector<ccd::CcdQuery>& queries, const ccd::CcdSettings& settings, bool parallel,
                            std::vector<std::uint8_t>& keep, const ccd::ProjectionFilterOptions& projection = {});
 
