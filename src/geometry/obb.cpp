@@ -137,19 +137,18 @@ using FaceMoments = std::array<double, 9>;
 
 #if defined(CLOTHCD_SIMD_X86)
 // sum_moments four entries at a time: every entry summed in the same order.
-CLOTHCD_SIMD_AVX2 FaceMoments sum_moments_avx2(const FaceMoments* moments, const int* faces,
-                                                             size_t count) {
-  __m256d low = _mm256_setzero_pd(), high = _mm256_setzero_pd();
+CLOTHCD_SIMD_AVX2 FaceMoments sum_moments_avx2(const FaceMoments* moments, const int* faces, size_t count) {
+  simd::d4::Doubles low = simd::d4::splat(0.0), high = low;
   double last = 0.0;
   for (size_t j = 0; j < count; ++j) {
     const double* m = moments[faces[j]].data();
-    low = _mm256_add_pd(low, _mm256_loadu_pd(m));
-    high = _mm256_add_pd(high, _mm256_loadu_pd(m + 4));
+    low = low + simd::d4::load(m);
+    high = high + simd::d4::load(m + 4);
     last += m[8];
   }
   FaceMoments total;
-  _mm256_storeu_pd(total.data(), low);
-  _mm256_storeu_pd(total.data() + 4, high);
+  simd::d4::store(total.data(), low);
+  simd::d4::store(total.data() + 4, high);
   total[8] = last;
   return total;
 }
@@ -290,26 +289,23 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
 
 #if defined(CLOTHCD_SIMD_X86)
 // Row p moved: the three coordinates in one register (the fourth lane unused), with move_rows's products and sums.
-[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline __m256d moved_row(const double* p, __m256d c0, __m256d c1,
-                                                                          __m256d c2, __m256d shift) {
-  const __m256d yz =
-      _mm256_add_pd(_mm256_mul_pd(c1, _mm256_broadcast_sd(p + 1)), _mm256_mul_pd(c2, _mm256_broadcast_sd(p + 2)));
-  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(c0, _mm256_broadcast_sd(p)), yz), shift);
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline simd::d4::Doubles moved_row(const double* p,
+                                                                          const simd::d4::Doubles column[3],
+                                                                          simd::d4::Doubles shift) {
+  using simd::d4::splat;
+  return (column[0] * splat(p[0]) + (column[1] * splat(p[1]) + column[2] * splat(p[2]))) + shift;
 }
 
 CLOTHCD_SIMD_AVX2 void move_rows_avx2(const double* from, Eigen::Index rows, const Eigen::Matrix3d& r,
-                                                    const Eigen::Vector3d& t, double* to) {
+                                      const Eigen::Vector3d& t, double* to) {
   if (rows == 0) return;
-  const __m256d c0 = _mm256_setr_pd(r(0, 0), r(1, 0), r(2, 0), 0.0);
-  const __m256d c1 = _mm256_setr_pd(r(0, 1), r(1, 1), r(2, 1), 0.0);
-  const __m256d c2 = _mm256_setr_pd(r(0, 2), r(1, 2), r(2, 2), 0.0);
-  const __m256d shift = _mm256_setr_pd(t[0], t[1], t[2], 0.0);
+  using simd::d4::make;
+  const simd::d4::Doubles column[3] = {make(r(0, 0), r(1, 0), r(2, 0), 0.0), make(r(0, 1), r(1, 1), r(2, 1), 0.0),
+                                       make(r(0, 2), r(1, 2), r(2, 2), 0.0)};
+  const simd::d4::Doubles shift = make(t[0], t[1], t[2], 0.0);
   // Four doubles stored per row: the fourth lands on the next row's x, which that row then overwrites.
-  for (Eigen::Index i = 0; i + 1 < rows; ++i, from += 3, to += 3)
-    _mm256_storeu_pd(to, moved_row(from, c0, c1, c2, shift));
-  const __m256d last = moved_row(from, c0, c1, c2, shift);
-  _mm_storeu_pd(to, _mm256_castpd256_pd128(last));
-  _mm_store_sd(to + 2, _mm256_extractf128_pd(last, 1));
+  for (Eigen::Index i = 0; i + 1 < rows; ++i, from += 3, to += 3) simd::d4::store(to, moved_row(from, column, shift));
+  simd::d4::store3(to, moved_row(from, column, shift));
 }
 #endif
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <limits>
 
 #include "clothcd/simd_level.hpp"
@@ -48,13 +49,13 @@ double squared_distance(const double* p, const Eigen::Vector3d& centre) {
 
 #if defined(CLOTHCD_SIMD_X86)
 
-// Per slab: the running best of {p[b], p[c], -p[b], -p[c]} and of the distance from the centre (lane 1 unused, never
-// beaten), with their rows as doubles (exact) so that one comparison mask selects value and row together.
+// Per slab: the running best of {p[b], p[c], -p[b], -p[c]} and of the distance from the centre (lanes 1 to 3 unused,
+// never beaten), with their rows as doubles (exact) so that one comparison mask selects value and row together.
 struct alignas(32) SlabBest {
   double extreme[4];
   double extreme_row[4];
-  double far[2];
-  double far_row[2];
+  double far[4];
+  double far_row[4];
 };
 
 // bounds() with a row in one register (the fourth lane unused); min(p, low) is exactly std::min(low, p), and so on.
@@ -62,36 +63,36 @@ CLOTHCD_SIMD_AVX2 void bounds_avx2(const Vertices& points, Eigen::Vector3d& low,
   low.setZero();
   high.setZero();
   if (points.rows() == 0) return;
-  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
-  __m256d lo = _mm256_maskload_pd(points.data(), xyz), hi = lo;
+  simd::d4::Doubles lo = simd::d4::load3(points.data()), hi = lo;
   for (Eigen::Index i = 1; i < points.rows(); ++i) {
-    const __m256d p = _mm256_maskload_pd(points.data() + 3 * i, xyz);
-    lo = _mm256_min_pd(p, lo);
-    hi = _mm256_max_pd(p, hi);
+    const simd::d4::Doubles p = simd::d4::load3(points.data() + 3 * i);
+    lo = simd::d4::min(p, lo);
+    hi = simd::d4::max(p, hi);
   }
   double l[4], h[4];
-  _mm256_storeu_pd(l, lo);
-  _mm256_storeu_pd(h, hi);
+  simd::d4::store(l, lo);
+  simd::d4::store(h, hi);
   low = Eigen::Vector3d(l[0], l[1], l[2]);
   high = Eigen::Vector3d(h[0], h[1], h[2]);
 }
 
-// Updates `slab` (of axis a) by the point p (row `row`, distance `far` from the centre).
+// Updates the running bests `best` and their rows `best_row` by `value` (row `row`): a strictly greater value
+// replaces the running best and its row (so ties keep the first row); max(value, old) is value exactly where
+// value > old.
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void take_greater(double* best, double* best_row,
+                                                                  simd::d4::Doubles value, simd::d4::Doubles row) {
+  const simd::d4::Doubles old = simd::d4::load(best);
+  simd::d4::store(best, simd::d4::max(value, old));
+  simd::d4::store(best_row, simd::d4::select(value > old, row, simd::d4::load(best_row)));
+}
+
+// Updates `slab` (of axis a) by the point p (row `row`, distance `far` from the centre in lane 0, -infinity in the
+// others).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void take_better(SlabBest& slab, const double* p, int a,
-                                                                       __m128d far, __m256d row) {
+                                                                 simd::d4::Doubles far, simd::d4::Doubles row) {
   const int b = (a + 1) % 3, c = (a + 2) % 3;
-  // A strictly greater value replaces the running best and its row (so ties keep the first row); max(value, old) is
-  // value exactly where value > old.
-  const __m128d side = _mm_set_pd(p[c], p[b]);
-  const __m256d extreme = _mm256_insertf128_pd(_mm256_castpd128_pd256(side), _mm_sub_pd(_mm_setzero_pd(), side), 1);
-  const __m256d old = _mm256_load_pd(slab.extreme);
-  const __m256d take = _mm256_cmp_pd(extreme, old, _CMP_GT_OQ);
-  _mm256_store_pd(slab.extreme, _mm256_max_pd(extreme, old));
-  _mm256_store_pd(slab.extreme_row, _mm256_blendv_pd(_mm256_load_pd(slab.extreme_row), row, take));
-  const __m128d old_far = _mm_load_pd(slab.far);
-  const __m128d take_far = _mm_cmpgt_pd(far, old_far);
-  _mm_store_pd(slab.far, _mm_max_pd(far, old_far));
-  _mm_store_pd(slab.far_row, _mm_blendv_pd(_mm_load_pd(slab.far_row), _mm256_castpd256_pd128(row), take_far));
+  take_greater(slab.extreme, slab.extreme_row, simd::d4::make(p[b], p[c], 0.0 - p[b], 0.0 - p[c]), row);
+  take_greater(slab.far, slab.far_row, far, row);
 }
 
 // The running bests of every slab, updated point by point. The slab indices of a block of points are computed before
@@ -105,28 +106,28 @@ CLOTHCD_SIMD_AVX2 void slab_extremes_avx2(const Vertices& points, const Eigen::V
   const int slab_count = 3 * cut.count;
   std::array<SlabBest, 3 * kMaxSlabs> best;
   const double never = -std::numeric_limits<double>::infinity();
-  std::fill_n(best.begin(), slab_count, SlabBest{{never, never, never, never}, {-1, -1, -1, -1}, {never, never},
-                                                 {-1, -1}});
+  std::fill_n(best.begin(), slab_count, SlabBest{{never, never, never, never}, {-1, -1, -1, -1},
+                                                 {never, never, never, never}, {-1, -1, -1, -1}});
   // Slab of each axis as in Slabs::of, for x, y, z at once (the fourth lane unused), offset to the axis's slabs.
-  const __m256d lo = _mm256_setr_pd(cut.lo[0], cut.lo[1], cut.lo[2], 0.0);
-  const __m256d inv_width = _mm256_setr_pd(cut.inv_width[0], cut.inv_width[1], cut.inv_width[2], 0.0);
-  const __m128i last = _mm_set1_epi32(cut.count - 1), first_of_axis = _mm_setr_epi32(0, cut.count, 2 * cut.count, 0);
-  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+  const simd::d4::Doubles lo = simd::d4::make(cut.lo[0], cut.lo[1], cut.lo[2], 0.0);
+  const simd::d4::Doubles inv_width = simd::d4::make(cut.inv_width[0], cut.inv_width[1], cut.inv_width[2], 0.0);
+  const simd::I32x4 last = {cut.count - 1, cut.count - 1, cut.count - 1, cut.count - 1};
+  const simd::I32x4 first_of_axis = {0, cut.count, 2 * cut.count, 0};
   constexpr int kBlock = 64;
   alignas(16) std::array<int, 4 * kBlock> slab_of;
   const Eigen::Index n = points.rows();
   for (Eigen::Index start = 0; start < n; start += kBlock) {
     const int count = static_cast<int>(std::min<Eigen::Index>(kBlock, n - start));
     for (int j = 0; j < count; ++j) {
-      const __m256d p = _mm256_maskload_pd(points.data() + 3 * (start + j), xyz);
-      const __m128i slab = _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_sub_pd(p, lo), inv_width));
-      _mm_store_si128(reinterpret_cast<__m128i*>(slab_of.data() + 4 * j),
-                      _mm_add_epi32(_mm_min_epi32(slab, last), first_of_axis));
+      const simd::d4::Doubles p = simd::d4::load3(points.data() + 3 * (start + j));
+      const simd::I32x4 slab = simd::d4::truncate((p - lo) * inv_width);
+      const simd::I32x4 axis_slab = (slab < last ? slab : last) + first_of_axis;
+      std::memcpy(slab_of.data() + 4 * j, &axis_slab, sizeof axis_slab);
     }
     for (int j = 0; j < count; ++j) {
       const double* p = points.data() + 3 * (start + j);
-      const __m128d far = _mm_set_pd(never, squared_distance(p, centre));
-      const __m256d row = _mm256_set1_pd(double(start + j));
+      const simd::d4::Doubles far = simd::d4::make(squared_distance(p, centre), never, never, never);
+      const simd::d4::Doubles row = simd::d4::splat(double(start + j));
       for (int a = 0; a < 3; ++a) take_better(best[size_t(slab_of[size_t(4 * j + a)])], p, a, far, row);
     }
   }

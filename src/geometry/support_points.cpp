@@ -37,23 +37,22 @@ void split(std::vector<Eigen::Vector3d>& points, int begin, int end, int group_s
 
 // {min, max} of x[i] dx + y[i] dy + z[i] dz over i < count (a multiple of 4), four points at a time, each product
 // summed in the order of Eigen's dot product of the point with the direction, so the values are those of a scan.
-CLOTHCD_SIMD_AVX2 std::pair<double, double> scan_min_max(const double* x, const double* y,
-                                                                       const double* z, size_t count,
-                                                                       const Eigen::Vector3d& direction) {
-  const __m256d dx = _mm256_set1_pd(direction.x()), dy = _mm256_set1_pd(direction.y()),
-                dz = _mm256_set1_pd(direction.z());
-  __m256d lo = _mm256_set1_pd(std::numeric_limits<double>::infinity());
-  __m256d hi = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
+CLOTHCD_SIMD_AVX2 std::pair<double, double> scan_min_max(const double* x, const double* y, const double* z,
+                                                         size_t count, const Eigen::Vector3d& direction) {
+  using simd::d4::Doubles;
+  using simd::d4::load;
+  const Doubles dx = simd::d4::splat(direction.x()), dy = simd::d4::splat(direction.y()),
+                dz = simd::d4::splat(direction.z());
+  Doubles lo = simd::d4::splat(std::numeric_limits<double>::infinity());
+  Doubles hi = simd::d4::splat(-std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < count; i += 4) {
-    const __m256d xy =
-        _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(x + i), dx), _mm256_mul_pd(_mm256_loadu_pd(y + i), dy));
-    const __m256d dot = _mm256_add_pd(xy, _mm256_mul_pd(_mm256_loadu_pd(z + i), dz));
-    lo = _mm256_min_pd(lo, dot);
-    hi = _mm256_max_pd(hi, dot);
+    const Doubles dot = (load(x + i) * dx + load(y + i) * dy) + load(z + i) * dz;
+    lo = simd::d4::min(lo, dot);
+    hi = simd::d4::max(hi, dot);
   }
   double low[4], high[4];
-  _mm256_storeu_pd(low, lo);
-  _mm256_storeu_pd(high, hi);
+  simd::d4::store(low, lo);
+  simd::d4::store(high, hi);
   return {std::min(std::min(low[0], low[1]), std::min(low[2], low[3])),
           std::max(std::max(high[0], high[1]), std::max(high[2], high[3]))};
 }

@@ -54,34 +54,36 @@ void multiply_springs(const double* n0, const double* n1, const double* n2, cons
 }
 
 #if defined(CLOTHCD_SIMD_X86)
+using simd::d4::Doubles;
+using simd::d4::load;
+using simd::d4::load3;
+using simd::d4::splat;
+using simd::d4::store;
+
+// Loads rows (x, y, z) of a stacked 3n vector at four offsets and returns them as the four x's, y's and z's.
+CLOTHCD_SIMD_AVX2 void gather_rows(const double* stacked, const int* offsets, Doubles out[3]) {
+  const Doubles rows[4] = {load3(stacked + offsets[0]), load3(stacked + offsets[1]), load3(stacked + offsets[2]),
+                           load3(stacked + offsets[3])};
+  simd::d4::transpose3(rows, out);
+}
+
 // multiply_springs for the springs [0, 4 floor(count / 4)), four at a time: the same operations in the same order on
 // each spring (the library is built without contraction into fused multiply-adds), and the sums updated spring by
 // spring in order, so the result is bit for bit the scalar one. Returns the number of springs done.
 CLOTHCD_SIMD_AVX2 std::size_t multiply_springs_avx2(const double* n0, const double* n1, const double* n2,
-                                               const double* alpha, const double* beta, const int* a3s,
-                                               const int* b3s, std::size_t count, const double* in, double* sum) {
-  const __m256i first_three = _mm256_set_epi64x(0, -1, -1, -1);  // a vertex's x, y, z (never reads past the vector)
+                                                    const double* alpha, const double* beta, const int* a3s,
+                                                    const int* b3s, std::size_t count, const double* in,
+                                                    double* sum) {
   const std::size_t whole = count / 4 * 4;
   alignas(32) double s[3][4];
   for (std::size_t k = 0; k < whole; k += 4) {
-    __m256d d[4];  // (q0, q1, q2, 0) of the four springs
-    for (int l = 0; l < 4; ++l) {
-      d[l] = _mm256_sub_pd(_mm256_maskload_pd(in + a3s[k + l], first_three),
-                           _mm256_maskload_pd(in + b3s[k + l], first_three));
-    }
-    const __m256d lo01 = _mm256_unpacklo_pd(d[0], d[1]), hi01 = _mm256_unpackhi_pd(d[0], d[1]);
-    const __m256d lo23 = _mm256_unpacklo_pd(d[2], d[3]), hi23 = _mm256_unpackhi_pd(d[2], d[3]);
-    const __m256d q0 = _mm256_permute2f128_pd(lo01, lo23, 0x20);
-    const __m256d q1 = _mm256_permute2f128_pd(hi01, hi23, 0x20);
-    const __m256d q2 = _mm256_permute2f128_pd(lo01, lo23, 0x31);
-    const __m256d m0 = _mm256_loadu_pd(n0 + k), m1 = _mm256_loadu_pd(n1 + k), m2 = _mm256_loadu_pd(n2 + k);
-    const __m256d b = _mm256_loadu_pd(beta + k);
-    const __m256d dot =
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(m0, q0), _mm256_mul_pd(m1, q1)), _mm256_mul_pd(m2, q2));
-    const __m256d scale = _mm256_mul_pd(_mm256_loadu_pd(alpha + k), dot);
-    _mm256_store_pd(s[0], _mm256_add_pd(_mm256_mul_pd(scale, m0), _mm256_mul_pd(b, q0)));
-    _mm256_store_pd(s[1], _mm256_add_pd(_mm256_mul_pd(scale, m1), _mm256_mul_pd(b, q1)));
-    _mm256_store_pd(s[2], _mm256_add_pd(_mm256_mul_pd(scale, m2), _mm256_mul_pd(b, q2)));
+    Doubles d[4], q[3];  // (q0, q1, q2, 0) of the four springs, then the four q0's, q1's and q2's
+    for (int l = 0; l < 4; ++l) d[l] = load3(in + a3s[k + l]) - load3(in + b3s[k + l]);
+    simd::d4::transpose3(d, q);
+    const Doubles m[3] = {load(n0 + k), load(n1 + k), load(n2 + k)};
+    const Doubles b = load(beta + k);
+    const Doubles scale = load(alpha + k) * ((m[0] * q[0] + m[1] * q[1]) + m[2] * q[2]);
+    for (int c = 0; c < 3; ++c) store(s[c], scale * m[c] + b * q[c]);
     for (int l = 0; l < 4; ++l) {
       const int a3 = a3s[k + l], b3 = b3s[k + l];
       sum[a3] += s[0][l];
@@ -98,33 +100,21 @@ CLOTHCD_SIMD_AVX2 std::size_t multiply_springs_avx2(const double* n0, const doub
 // The CG's elementwise updates dv += step p, r -= step ap, z = r / diagonal on [0, 4 floor(n / 4)), four at a time, in
 // one pass: the same operation per element as the Eigen expressions (so the same values); returns the count done.
 CLOTHCD_SIMD_AVX2 Eigen::Index cg_step_avx2(double step, const double* p, const double* ap, const double* diagonal,
-                                       double* dv, double* r, double* z, Eigen::Index n) {
-  const __m256d s = _mm256_set1_pd(step);
+                                            double* dv, double* r, double* z, Eigen::Index n) {
+  const Doubles s = splat(step);
   Eigen::Index i = 0;
   for (; i + 4 <= n; i += 4) {
-    _mm256_storeu_pd(dv + i, _mm256_add_pd(_mm256_loadu_pd(dv + i), _mm256_mul_pd(s, _mm256_loadu_pd(p + i))));
-    const __m256d ri = _mm256_sub_pd(_mm256_loadu_pd(r + i), _mm256_mul_pd(s, _mm256_loadu_pd(ap + i)));
-    _mm256_storeu_pd(r + i, ri);
-    _mm256_storeu_pd(z + i, _mm256_div_pd(ri, _mm256_loadu_pd(diagonal + i)));
+    store(dv + i, load(dv + i) + s * load(p + i));
+    const Doubles ri = load(r + i) - s * load(ap + i);
+    store(r + i, ri);
+    store(z + i, ri / load(diagonal + i));
   }
   return i;
 }
 
-// Loads rows (x, y, z) of a stacked 3n vector at four offsets and returns them as the four x's, y's and z's.
-CLOTHCD_SIMD_AVX2 void gather_rows(const double* stacked, const int* offsets, __m256d out[3]) {
-  const __m256i first_three = _mm256_set_epi64x(0, -1, -1, -1);
-  __m256d r[4];
-  for (int l = 0; l < 4; ++l) r[l] = _mm256_maskload_pd(stacked + offsets[l], first_three);
-  const __m256d lo01 = _mm256_unpacklo_pd(r[0], r[1]), hi01 = _mm256_unpackhi_pd(r[0], r[1]);
-  const __m256d lo23 = _mm256_unpacklo_pd(r[2], r[3]), hi23 = _mm256_unpackhi_pd(r[2], r[3]);
-  out[0] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
-  out[1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
-  out[2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
-}
-
 // (a0 b0 + a1 b1) + a2 b2, the order of Eigen's 3-vector dot product and squared norm.
-CLOTHCD_SIMD_AVX2 __m256d dot3(const __m256d a[3], const __m256d b[3]) {
-  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a[0], b[0]), _mm256_mul_pd(a[1], b[1])), _mm256_mul_pd(a[2], b[2]));
+CLOTHCD_SIMD_AVX2 Doubles dot3(const Doubles a[3], const Doubles b[3]) {
+  return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
 }
 
 // The per-spring linearisation of predict_velocities for springs [0, 4 floor(count / 4)), four at a time: the same
@@ -132,49 +122,49 @@ CLOTHCD_SIMD_AVX2 __m256d dot3(const __m256d a[3], const __m256d b[3]) {
 // diagonal updated spring by spring in order, so the result is bit for bit the scalar one. `rest` and `stiffness`
 // hold each spring's rest length and k. Returns the number of springs done.
 CLOTHCD_SIMD_AVX2 std::size_t linearise_springs_avx2(const double* x, const double* v, const double* rest,
-                                                const double* stiffness, double h, double damping, std::size_t count,
-                                                double* n0, double* n1, double* n2, double* alpha, double* beta,
-                                                const int* a3s, const int* b3s, double* rhs, double* diagonal) {
+                                                     const double* stiffness, double h, double damping,
+                                                     std::size_t count, double* n0, double* n1, double* n2,
+                                                     double* alpha, double* beta, const int* a3s, const int* b3s,
+                                                     double* rhs, double* diagonal) {
   const std::size_t whole = count / 4 * 4;
-  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), hv = _mm256_set1_pd(h);
-  const __m256d hh = _mm256_set1_pd(h * h), hd = _mm256_set1_pd(h * damping), kd = _mm256_set1_pd(damping);
-  const __m256d tiny = _mm256_set1_pd(1e-12), sign = _mm256_set1_pd(-0.0);
-  alignas(32) double contribution[3][4], block_diagonal[3][4], valid[4];
+  const Doubles zero = splat(0.0), one = splat(1.0), hv = splat(h);
+  const Doubles hh = splat(h * h), hd = splat(h * damping), kd = splat(damping);
+  const Doubles tiny = splat(1e-12);
+  alignas(32) double contribution[3][4], block_diagonal[3][4];
   for (std::size_t s = 0; s < whole; s += 4) {
-    __m256d xa[3], xb[3], va[3], vb[3], d[3], n[3], dv[3];
+    Doubles xa[3], xb[3], va[3], vb[3], d[3], n[3], dv[3];
     gather_rows(x, a3s + s, xa);
     gather_rows(x, b3s + s, xb);
-    for (int c = 0; c < 3; ++c) d[c] = _mm256_sub_pd(xa[c], xb[c]);
-    const __m256d length = _mm256_sqrt_pd(dot3(d, d));
-    const __m256d ok = _mm256_cmp_pd(length, tiny, _CMP_GT_OQ);  // length > 1e-12 (false for NaN)
-    for (int c = 0; c < 3; ++c) n[c] = _mm256_div_pd(d[c], length);
-    const __m256d r = _mm256_loadu_pd(rest + s), k = _mm256_loadu_pd(stiffness + s);
-    const __m256d t = _mm256_sub_pd(one, _mm256_div_pd(r, length));
-    const __m256d transverse = _mm256_blendv_pd(zero, t, _mm256_cmp_pd(zero, t, _CMP_LT_OQ));  // std::max(0.0, t)
+    for (int c = 0; c < 3; ++c) d[c] = xa[c] - xb[c];
+    const Doubles length = simd::d4::sqrt(dot3(d, d));
+    const auto ok = length > tiny;  // length > 1e-12 (false for NaN)
+    for (int c = 0; c < 3; ++c) n[c] = d[c] / length;
+    const Doubles r = load(rest + s), k = load(stiffness + s);
+    const Doubles t = one - r / length;
+    const Doubles transverse = simd::d4::select(zero < t, t, zero);  // std::max(0.0, t)
     gather_rows(v, a3s + s, va);
     gather_rows(v, b3s + s, vb);
-    for (int c = 0; c < 3; ++c) dv[c] = _mm256_sub_pd(va[c], vb[c]);
-    const __m256d along = dot3(dv, n);
-    const __m256d scale = _mm256_sub_pd(_mm256_mul_pd(_mm256_xor_pd(k, sign), _mm256_sub_pd(length, r)),
-                                        _mm256_mul_pd(kd, along));
-    const __m256d c1 = _mm256_mul_pd(_mm256_sub_pd(one, transverse), along);
-    const __m256d b = _mm256_mul_pd(_mm256_mul_pd(hh, k), transverse);
-    const __m256d a = _mm256_sub_pd(_mm256_add_pd(_mm256_mul_pd(hh, k), hd), b);
+    for (int c = 0; c < 3; ++c) dv[c] = va[c] - vb[c];
+    const Doubles along = dot3(dv, n);
+    const Doubles scale = -k * (length - r) - kd * along;
+    const Doubles c1 = (one - transverse) * along;
+    const Doubles b = hh * k * transverse;
+    const Doubles a = (hh * k + hd) - b;
     for (int c = 0; c < 3; ++c) {
-      const __m256d force = _mm256_mul_pd(scale, n[c]);
-      const __m256d kv = _mm256_mul_pd(k, _mm256_add_pd(_mm256_mul_pd(c1, n[c]), _mm256_mul_pd(transverse, dv[c])));
-      _mm256_store_pd(contribution[c], _mm256_sub_pd(_mm256_mul_pd(hv, force), _mm256_mul_pd(hh, kv)));
-      _mm256_store_pd(block_diagonal[c], _mm256_add_pd(_mm256_mul_pd(a, _mm256_mul_pd(n[c], n[c])), b));
+      const Doubles force = scale * n[c];
+      const Doubles kv = k * (c1 * n[c] + transverse * dv[c]);
+      store(contribution[c], hv * force - hh * kv);
+      store(block_diagonal[c], a * (n[c] * n[c]) + b);
     }
     // Degenerate springs keep n = (1, 0, 0), alpha = beta = 0 and add nothing.
-    _mm256_storeu_pd(n0 + s, _mm256_blendv_pd(one, n[0], ok));
-    _mm256_storeu_pd(n1 + s, _mm256_blendv_pd(zero, n[1], ok));
-    _mm256_storeu_pd(n2 + s, _mm256_blendv_pd(zero, n[2], ok));
-    _mm256_storeu_pd(alpha + s, _mm256_blendv_pd(zero, a, ok));
-    _mm256_storeu_pd(beta + s, _mm256_blendv_pd(zero, b, ok));
-    _mm256_store_pd(valid, ok);
+    store(n0 + s, simd::d4::select(ok, n[0], one));
+    store(n1 + s, simd::d4::select(ok, n[1], zero));
+    store(n2 + s, simd::d4::select(ok, n[2], zero));
+    store(alpha + s, simd::d4::select(ok, a, zero));
+    store(beta + s, simd::d4::select(ok, b, zero));
+    const unsigned valid = simd::d4::bits(ok);
     for (int l = 0; l < 4; ++l) {
-      if (valid[l] == 0.0) continue;  // an all-zero lane of the mask (an all-ones lane is a NaN, never == 0)
+      if (((valid >> l) & 1u) == 0) continue;
       const int a3 = a3s[s + l], b3 = b3s[s + l];
       for (int c = 0; c < 3; ++c) rhs[a3 + c] += contribution[c][l];
       for (int c = 0; c < 3; ++c) rhs[b3 + c] -= contribution[c][l];
@@ -187,11 +177,9 @@ CLOTHCD_SIMD_AVX2 std::size_t linearise_springs_avx2(const double* x, const doub
 
 // The CG's new search direction p = z + c p on [0, 4 floor(n / 4)), four at a time; returns the count done.
 CLOTHCD_SIMD_AVX2 Eigen::Index cg_direction_avx2(double c, const double* z, double* p, Eigen::Index n) {
-  const __m256d cs = _mm256_set1_pd(c);
+  const Doubles cs = splat(c);
   Eigen::Index i = 0;
-  for (; i + 4 <= n; i += 4) {
-    _mm256_storeu_pd(p + i, _mm256_add_pd(_mm256_loadu_pd(z + i), _mm256_mul_pd(cs, _mm256_loadu_pd(p + i))));
-  }
+  for (; i + 4 <= n; i += 4) store(p + i, load(z + i) + cs * load(p + i));
   return i;
 }
 #endif

@@ -3,11 +3,12 @@
 // and compiled for every level of clothcd::SimdLevel; the caller picks the compiled version from simd_level().
 //
 // Types are the compiler's vector extension (GCC and Clang, any architecture): four or eight float or 32-bit integer
-// lanes, four double lanes. Arithmetic and comparisons are the built-in operators (a comparison gives an integer
+// lanes, four double or 64-bit integer lanes. Arithmetic and comparisons are the built-in operators (a comparison gives an integer
 // vector of lane masks, all ones or zero; the library is built without contraction, so products are never fused and
-// a kernel gives the same bits at every width). Each width's namespace (w4, w8) names its types and adds what the
-// operators do not say: unaligned loads, lane masks as bits, dropping the bits past a range's end, and widening a row
-// of lane numbers to positions.
+// a kernel gives the same bits at every width). Each width's namespace (w4, w8, d4) names its types and adds what
+// the operators do not say: unaligned and partial loads and stores, broadcasts, the minimum and maximum of SSE (the
+// second operand where either is NaN), selects, square roots, transposes, lane masks as bits, dropping the bits past a
+// range's end, and widening a row of lane numbers to positions.
 //
 // The eight-lane operations need AVX: they are compiled for it (CLOTHCD_SIMD_AVX2 below) and may only
 // run inside code compiled the same way. A kernel that uses them is written in a header of its own and included twice:
@@ -48,6 +49,8 @@ using F32x8 = float __attribute__((vector_size(32)));
 using I32x8 = std::int32_t __attribute__((vector_size(32)));
 /// Four double lanes (AVX).
 using F64x4 = double __attribute__((vector_size(32)));
+/// Four 64-bit integer lanes (the lane masks of F64x4 comparisons; AVX).
+using I64x4 = std::int64_t __attribute__((vector_size(32)));
 
 // ---- four float or int lanes: the baseline (SSE2 on x86-64, NEON on ARM, scalar code elsewhere) ----
 namespace w4 {
@@ -137,6 +140,75 @@ using Ints = I32x8;
 }
 
 }  // namespace w8
+
+// ---- four double lanes: AVX2 ----
+namespace d4 {
+
+/// Lanes per vector.
+inline constexpr int kWidth = 4;
+/// Double lanes.
+using Doubles = F64x4;
+/// 64-bit integer lanes, and the masks of comparisons.
+using Masks = I64x4;
+
+/// kWidth values from p (any alignment).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles load(const double* p) { return _mm256_loadu_pd(p); }
+
+/// p[0], p[1], p[2] and 0 (reads three doubles only).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles load3(const double* p) {
+  return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0));
+}
+
+/// v to p[0 .. kWidth) (any alignment).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void store(double* p, Doubles v) { _mm256_storeu_pd(p, v); }
+
+/// The first three lanes of v to p[0], p[1], p[2] (writes three doubles only).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void store3(double* p, Doubles v) {
+  _mm256_maskstore_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0), v);
+}
+
+/// Rows of three (the first three lanes of rows[0..3]) as columns: lane l of out[c] is lane c of rows[l].
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void transpose3(const Doubles rows[4], Doubles out[3]) {
+  const __m256d lo01 = _mm256_unpacklo_pd(rows[0], rows[1]), hi01 = _mm256_unpackhi_pd(rows[0], rows[1]);
+  const __m256d lo23 = _mm256_unpacklo_pd(rows[2], rows[3]), hi23 = _mm256_unpackhi_pd(rows[2], rows[3]);
+  out[0] = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+  out[1] = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+  out[2] = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+}
+
+/// x in every lane.
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles splat(double x) { return _mm256_set1_pd(x); }
+
+/// The lanes (x, y, z, w).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles make(double x, double y, double z, double w) {
+  return _mm256_setr_pd(x, y, z, w);
+}
+
+/// Lane by lane a < b ? a : b (b when either is NaN), the minimum of SSE.
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles min(Doubles a, Doubles b) { return _mm256_min_pd(a, b); }
+
+/// Lane by lane a > b ? a : b (b when either is NaN), the maximum of SSE.
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles max(Doubles a, Doubles b) { return _mm256_max_pd(a, b); }
+
+/// Lane by lane `mask` ? a : b.
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles select(Masks mask, Doubles a, Doubles b) {
+  return _mm256_blendv_pd(b, a, reinterpret_cast<__m256d>(mask));
+}
+
+/// The square root of every lane.
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles sqrt(Doubles v) { return _mm256_sqrt_pd(v); }
+
+/// Every lane rounded toward zero to a 32-bit integer (lanes beyond the int range or NaN give INT_MIN).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline I32x4 truncate(Doubles v) {
+  return reinterpret_cast<I32x4>(_mm256_cvttpd_epi32(v));
+}
+
+/// Bit k set when lane k of `mask` is true (all ones).
+[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline unsigned bits(Masks mask) {
+  return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(mask)));
+}
+
+}  // namespace d4
 
 #endif
 
