@@ -12,6 +12,8 @@
 #include "broadphase_scenes.hpp"
 #include "clothcd/broadphase/candidates.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
+#include "clothcd/simd_level.hpp"
+#include "support/simd_limit.hpp"
 
 using namespace clothcd;
 using namespace clothcd::broadphase;
@@ -58,7 +60,6 @@ TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[br
                               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const int leaf = GENERATE(1, 3, 16, 32);  // 16, 32 (the default): leaves span several groups of the packed tests
   const bool parallel = GENERATE(false, true);
-  const bool wide = GENERATE(false, true);  // eight-lane leaf tests where the CPU has them, else four
   const int seed = GENERATE(1, 2, 3);
   const bool sphere_obstacle = seed != 2;
   std::mt19937 rng(seed);
@@ -71,20 +72,24 @@ TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[br
   CandidateSet reference;
   brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), reference);
   REQUIRE(reference.size() > 0);  // the scene must exercise the search
-  CandidateSet found;
-  TraversalStats stats;
-  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), {parallel, nullptr, wide}, found, &stats);
-  CHECK_FALSE(has_duplicates(sorted(found)));
-  check_same(sorted(found), sorted(reference));
-
   // Self-collision uses the cloth side's volume (AABB or sphere).
   CandidateSet self_reference;
   brute_force_self_candidates(cloth_body.view(0), self_reference);
   REQUIRE(self_reference.size() > 0);
-  CandidateSet self_found;
-  find_self_candidates(cloth_body.view(0), {parallel, nullptr, wide}, self_found);
-  CHECK_FALSE(has_duplicates(sorted(self_found)));
-  check_same(sorted(self_found), sorted(self_reference));
+  // Every SIMD level the CPU runs (four-lane leaf tests on the baseline, eight from AVX2 up).
+  for (const SimdLevel level : cpu_simd_levels()) {
+    INFO("level " << simd_level_name(level));
+    test::SimdLimit capped(level);
+    CandidateSet found;
+    TraversalStats stats;
+    find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), {parallel}, found, &stats);
+    CHECK_FALSE(has_duplicates(sorted(found)));
+    check_same(sorted(found), sorted(reference));
+    CandidateSet self_found;
+    find_self_candidates(cloth_body.view(0), {parallel}, self_found);
+    CHECK_FALSE(has_duplicates(sorted(self_found)));
+    check_same(sorted(self_found), sorted(self_reference));
+  }
 }
 
 TEST_CASE("hierarchies match brute force after refits and rebuilds", "[broadphase][brute-force][refit]") {
@@ -137,14 +142,18 @@ TEST_CASE("hierarchies match brute force on random triangle soups", "[broadphase
   TestBody body_a(a, jitter(a.vertices, 0.05, rng), 0.0, {kinds.cloth, 1 + seed % 3});
   TestBody body_b(b, jitter(b.vertices, 0.05, rng), 0.001, {kinds.obstacle, 1 + seed % 4});
 
-  CandidateSet reference, found;
+  CandidateSet reference, self_reference;
   brute_force_pair_candidates(body_a.view(0), body_b.view(3), reference);
-  find_pair_candidates(body_a.view(0), body_b.view(3), {seed % 2 == 0, nullptr, seed % 3 != 0}, found);
-  check_same(sorted(found), sorted(reference));
-  CandidateSet self_reference, self_found;
   brute_force_self_candidates(body_a.view(0), self_reference);
-  find_self_candidates(body_a.view(0), {seed % 2 == 1, nullptr, seed % 3 != 1}, self_found);
-  check_same(sorted(self_found), sorted(self_reference));
+  for (const SimdLevel level : cpu_simd_levels()) {
+    INFO("level " << simd_level_name(level));
+    test::SimdLimit capped(level);
+    CandidateSet found, self_found;
+    find_pair_candidates(body_a.view(0), body_b.view(3), {seed % 2 == 0}, found);
+    check_same(sorted(found), sorted(reference));
+    find_self_candidates(body_a.view(0), {seed % 2 == 1}, self_found);
+    check_same(sorted(self_found), sorted(self_reference));
+  }
 }
 
 TEST_CASE("self-collision never pairs primitives that share a vertex", "[broadphase][self]") {
