@@ -63,7 +63,7 @@ ccd::CcdFilter ccd_filter(CullingMode mode) {
   throw std::invalid_argument("collision detector: unknown culling mode");
 }
 
-void check_positions(const Vertices& positions, Eigen::Index rows, const std::string& what) {
+void check_positions(const PositionsRef& positions, Eigen::Index rows, const std::string& what) {
   if (positions.rows() != rows) {
     throw std::invalid_argument(what + " has " + std::to_string(positions.rows()) + " rows, expected " +
                                 std::to_string(rows));
@@ -122,6 +122,10 @@ struct CollisionDetector::Impl {
   std::vector<detail::KeyedIndex> order, sort_scratch;
   std::vector<detail::KeyedCollision> sorted;
   std::vector<Collision> collisions;
+  // The cloth positions of this call, copied from the caller's (any layout) into the row-major layout the
+  // hierarchies and the pair blocks read: the one copy detect() makes. With DetectorSettings::reuse_unchanged they
+  // become the previous positions when the call completes (a swap, not a copy).
+  Vertices current_start, current_end;
   // Reuse within a step (DetectorSettings::reuse_unchanged): the cloth positions of the last completed call.
   bool has_previous = false;
   Vertices previous_start, previous_end;
@@ -266,7 +270,7 @@ int CollisionDetector::add_obstacle(const TriangleMesh& mesh) {
   return static_cast<int>(impl_->obstacles.size());
 }
 
-void CollisionDetector::set_obstacle_positions(int body, const Vertices& start, const Vertices& end) {
+void CollisionDetector::set_obstacle_positions(int body, const PositionsRef& start, const PositionsRef& end) {
   Body& o = impl_->obstacle(body, "set_obstacle_positions");
   check_positions(start, o.rest.rows(), "set_obstacle_positions: start");
   check_positions(end, o.rest.rows(), "set_obstacle_positions: end");
@@ -294,10 +298,15 @@ const std::vector<int>& CollisionDetector::edges(int body) const {
   return impl_->obstacle(body, "edges").topology.edges;
 }
 
-const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, const Vertices& end) {
+const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& caller_start,
+                                                       const PositionsRef& caller_end) {
   Impl& d = *impl_;
-  check_positions(start, d.cloth.topology.vertex_count, "detect: cloth start positions");
-  check_positions(end, d.cloth.topology.vertex_count, "detect: cloth end positions");
+  check_positions(caller_start, d.cloth.topology.vertex_count, "detect: cloth start positions");
+  check_positions(caller_end, d.cloth.topology.vertex_count, "detect: cloth end positions");
+  d.current_start = caller_start;
+  d.current_end = caller_end;
+  const Vertices& start = d.current_start;
+  const Vertices& end = d.current_end;
   d.stats = DetectionStats{};
   const bool reuse = d.can_reuse(start, end);
   d.has_previous = false;  // until this call completes
@@ -354,8 +363,8 @@ const std::vector<Collision>& CollisionDetector::detect(const Vertices& start, c
   d.stats.reused = reuse ? previous - (replaced.vertex_face + replaced.edge_edge) : 0;
 
   if (d.settings.reuse_unchanged && !d.culler) {
-    d.previous_start = start;
-    d.previous_end = end;
+    d.previous_start.swap(d.current_start);
+    d.previous_end.swap(d.current_end);
     d.has_previous = true;
   }
 

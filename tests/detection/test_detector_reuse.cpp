@@ -8,27 +8,12 @@
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
+#include "detection/same_collisions.hpp"
 
 using namespace clothcd;
+using clothcd::test::check_same;
 
 namespace {
-
-void check_same(const std::vector<Collision>& found, const std::vector<Collision>& reference) {
-  REQUIRE(found.size() == reference.size());
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    const Collision& a = found[i];
-    const Collision& b = reference[i];
-    CHECK(a.kind == b.kind);
-    for (int k = 0; k < 4; ++k) {
-      CHECK(a.vertices[k].body == b.vertices[k].body);
-      CHECK(a.vertices[k].vertex == b.vertices[k].vertex);
-    }
-    CHECK(a.toi == b.toi);
-    CHECK(a.parameters == b.parameters);
-    CHECK(a.normal == b.normal);
-    CHECK(a.conservative == b.conservative);
-  }
-}
 
 void check_same_stats(const DetectionStats& a, const DetectionStats& b) {
   CHECK(a.candidates_vertex_face == b.candidates_vertex_face);

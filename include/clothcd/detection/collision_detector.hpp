@@ -11,6 +11,7 @@
 #include "clothcd/broadphase/hierarchy_kind.hpp"
 #include "clothcd/detection/block_observer.hpp"
 #include "clothcd/detection/collision.hpp"
+#include "clothcd/mesh/positions_ref.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd {
@@ -104,10 +105,10 @@ class CollisionDetector {
   /// Adds a static obstacle; returns its body id (1, 2, ...). Throws std::invalid_argument on an invalid mesh.
   int add_obstacle(const TriangleMesh& mesh);
 
-  /// Sets the positions of obstacle `body` at the start and end of the next step (a moving obstacle); both #V x 3.
-  /// After that step the obstacle rests at `end` until set again. Throws std::invalid_argument on an unknown body,
-  /// wrong sizes or non-finite coordinates.
-  void set_obstacle_positions(int body, const Vertices& start, const Vertices& end);
+  /// Sets the positions of obstacle `body` at the start and end of the next step (a moving obstacle); both #V x 3, in
+  /// any layout (PositionsRef), copied once into the detector. After that step the obstacle rests at `end` until set
+  /// again. Throws std::invalid_argument on an unknown body, wrong sizes or non-finite coordinates.
+  void set_obstacle_positions(int body, const PositionsRef& start, const PositionsRef& end);
 
   /// Moves obstacle `body` rigidly over the next step: its mesh as added, transformed by `start` and by `end`.
   void set_obstacle_transforms(int body, const Eigen::Isometry3d& start, const Eigen::Isometry3d& end);
@@ -118,9 +119,12 @@ class CollisionDetector {
   /// The unique edges of `body` (0 = cloth) as 2 vertex indices each: what Collision::vertices of an edge-edge pair use.
   [[nodiscard]] const std::vector<int>& edges(int body) const;
 
-  /// Finds every collision of the step: cloth positions `start` and `end` (#V x 3 each, finite).
-  /// The returned reference stays valid until the next call.
-  const std::vector<Collision>& detect(const Vertices& start, const Vertices& end);
+  /// Finds every collision of the step: cloth positions `start` and `end` (#V x 3 each, finite), in any layout:
+  /// Vertices, a column-major Eigen::MatrixXd, an Eigen::Map of one's own buffer (PositionsRef views them in place).
+  /// The detector copies each once into its own row-major buffers, the layout its hierarchies and pair blocks read
+  /// (the copy it keeps to recognise a re-test of the step, see DetectorSettings::reuse_unchanged); no other copy is
+  /// made. The returned reference stays valid until the next call.
+  const std::vector<Collision>& detect(const PositionsRef& start, const PositionsRef& end);
 
   /// Counts and times of the last detect() call.
   [[nodiscard]] const DetectionStats& stats() const;
