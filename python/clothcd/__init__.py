@@ -1,6 +1,8 @@
 """clothcd: cloth collision detection (Jin et al.'s method, with no missed collision).
 
-Positions are (N, 3) float64 arrays and faces (F, 3) int32 arrays in C order; other dtypes or orders are converted.
+Positions are (N, 3) float64 arrays and faces (F, 3) int32 arrays. CollisionDetector.detect and
+set_obstacle_positions read float64 arrays where they are, in any order (C, Fortran, a slice): no copy; other dtypes
+and array-likes are converted first (a copy). Elsewhere arrays in other dtypes or orders are converted.
 Errors arrive with the library's message: invalid arguments as ValueError, unreadable or invalid files as OSError.
 """
 
@@ -10,6 +12,7 @@ import os
 from typing import NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 
 from ._clothcd import (
     __version__,
@@ -100,19 +103,23 @@ class CollisionDetector:
         self._detector.set_obstacle_transforms(body, np.ascontiguousarray(start, dtype=np.float64),
                                                np.ascontiguousarray(end, dtype=np.float64))
 
-    def set_obstacle_positions(self, body: int, start, end) -> None:
-        """Sets the (N, 3) positions of obstacle `body` at the start and end of the next step."""
-        self._detector.set_obstacle_positions(body, np.ascontiguousarray(start, dtype=np.float64),
-                                              np.ascontiguousarray(end, dtype=np.float64))
+    def set_obstacle_positions(self, body: int, start: npt.ArrayLike, end: npt.ArrayLike) -> None:
+        """Sets the (N, 3) positions of obstacle `body` at the start and end of the next step (float64 arrays are
+        read in place; the detector keeps its own copy)."""
+        self._detector.set_obstacle_positions(body, np.asarray(start, dtype=np.float64),
+                                              np.asarray(end, dtype=np.float64))
 
     @property
     def obstacle_count(self) -> int:
         """Number of obstacles added."""
         return self._detector.obstacle_count()
 
-    def detect(self, x0, x1) -> Collisions:
-        """Every collision of the step from cloth positions `x0` to `x1` ((N, 3) float64 each). Runs without the GIL."""
-        kind, bodies, vertices, toi, parameters, normal, conservative = self._detector.detect(x0, x1)
+    def detect(self, x0: npt.ArrayLike, x1: npt.ArrayLike) -> Collisions:
+        """Every collision of the step from cloth positions `x0` to `x1` ((N, 3) each). float64 arrays in any order
+        go to the detector without a copy (it copies them once into its own buffers, as for a C++ caller); other
+        dtypes are converted first. Runs without the GIL: do not modify `x0` or `x1` from another thread meanwhile."""
+        kind, bodies, vertices, toi, parameters, normal, conservative = self._detector.detect(
+            np.asarray(x0, dtype=np.float64), np.asarray(x1, dtype=np.float64))
         return Collisions(kind, bodies, vertices, toi, parameters, normal, conservative.view(bool))
 
     def stats(self) -> dict:

@@ -1,6 +1,6 @@
 #pragma once
-// NumPy arrays in and out of the extension: (N, 3) float64 / int32 inputs checked with clear ValueErrors, and outputs
-// that own their memory.
+// NumPy arrays in and out of the extension: (N, 3) float64 / int32 inputs checked with clear ValueErrors (positions
+// viewed where they are, or copied where the library keeps them), and outputs that own their memory.
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "clothcd/mesh/positions_ref.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::python {
@@ -19,6 +20,8 @@ namespace nb = nanobind;
 
 /// A C-contiguous float64 array on the CPU (NumPy converts other dtypes and orders when it must).
 using DoubleArray = nb::ndarray<const double, nb::c_contig, nb::device::cpu>;
+/// A float64 array on the CPU with any strides (NumPy converts other dtypes).
+using PositionsArray = nb::ndarray<const double, nb::device::cpu>;
 /// A C-contiguous int32 array on the CPU.
 using IntArray = nb::ndarray<const int, nb::c_contig, nb::device::cpu>;
 
@@ -30,18 +33,20 @@ void require_n_by_3(const Array& array, const char* what) {
                                 " dimensions" + (array.ndim() == 2 ? " of width " + std::to_string(array.shape(1)) : ""));
 }
 
-/// Copies an (N, 3) float64 array into `out` (resized); one memcpy.
-inline void copy_vertices(const DoubleArray& array, const char* what, Vertices& out) {
+/// An (N, 3) float64 array as Vertices (a copy: for what the library keeps, such as a mesh).
+inline Vertices to_vertices(const DoubleArray& array, const char* what) {
   require_n_by_3(array, what);
-  out.resize(static_cast<Eigen::Index>(array.shape(0)), 3);
+  Vertices out(static_cast<Eigen::Index>(array.shape(0)), 3);
   if (out.size() > 0) std::memcpy(out.data(), array.data(), sizeof(double) * static_cast<std::size_t>(out.size()));
+  return out;
 }
 
-/// An (N, 3) float64 array as Vertices.
-inline Vertices to_vertices(const DoubleArray& array, const char* what) {
-  Vertices out;
-  copy_vertices(array, what, out);
-  return out;
+/// An (N, 3) float64 array viewed where it is, with its strides (C order, Fortran order, a slice): no copy.
+inline PositionsMap positions_view(const PositionsArray& array, const char* what) {
+  require_n_by_3(array, what);
+  // PositionsMap's outer stride steps from column to column, its inner stride from row to row.
+  return PositionsMap(array.data(), static_cast<Eigen::Index>(array.shape(0)), 3,
+                      {static_cast<Eigen::Index>(array.stride(1)), static_cast<Eigen::Index>(array.stride(0))});
 }
 
 /// An (N, 3) int32 array as Faces.

@@ -1,10 +1,12 @@
-// CollisionDetector and the CCD on query arrays for Python. detect() copies the two (N, 3) position arrays into the
-// detector's buffers (one memcpy each) and runs without the GIL.
+// CollisionDetector and the CCD on query arrays for Python. detect() and set_obstacle_positions() hand the (N, 3)
+// float64 arrays to the detector as views of their memory (no copy here; the detector makes its one copy of the
+// positions, as for a C++ caller) and detect() runs without the GIL.
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <chrono>
+#include <cstdint>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -48,10 +50,11 @@ Eigen::Isometry3d to_isometry(const DoubleArray& matrix, const char* what) {
   return result;
 }
 
-/// The detector with its position buffers.
+/// The detector, and where the positions of its last detect() call were read (what the tests check to see that
+/// NumPy arrays reach the detector without a copy).
 struct PyDetector {
   CollisionDetector detector;
-  Vertices start, end;
+  std::uintptr_t last_start = 0, last_end = 0;
 };
 
 /// The collisions as arrays: kind (0 vertex-face, 1 edge-edge), bodies (n, 4), vertices (n, 4), toi, parameters
@@ -101,7 +104,7 @@ void bind_detection(nb::module_& m) {
             settings.projection_normals = projection_normals;
             settings.decide_exactly = decide_exactly;
             learning::attach_network_culler(settings, model_path);
-            new (self) PyDetector{CollisionDetector(to_faces(faces, "faces"), vertex_count, settings), {}, {}};
+            new (self) PyDetector{CollisionDetector(to_faces(faces, "faces"), vertex_count, settings)};
           },
           nb::arg("faces"), nb::arg("vertex_count"), nb::arg("hierarchy"), nb::arg("culling"), nb::arg("thickness"),
           nb::arg("self_collision"), nb::arg("model_path"), nb::arg("max_leaf_faces"), nb::arg("parallel"),
@@ -120,24 +123,29 @@ void bind_detection(nb::module_& m) {
           nb::arg("body"), nb::arg("start"), nb::arg("end"))
       .def(
           "set_obstacle_positions",
-          [](PyDetector& self, int body, const DoubleArray& start, const DoubleArray& end) {
-            self.detector.set_obstacle_positions(body, to_vertices(start, "start"), to_vertices(end, "end"));
+          [](PyDetector& self, int body, const PositionsArray& start, const PositionsArray& end) {
+            self.detector.set_obstacle_positions(body, positions_view(start, "start"), positions_view(end, "end"));
           },
           nb::arg("body"), nb::arg("start"), nb::arg("end"))
       .def("obstacle_count", [](const PyDetector& self) { return self.detector.obstacle_count(); })
       .def(
           "detect",
-          [](PyDetector& self, const DoubleArray& start, const DoubleArray& end) {
-            copy_vertices(start, "x0", self.start);
-            copy_vertices(end, "x1", self.end);
+          [](PyDetector& self, const PositionsArray& start, const PositionsArray& end) {
+            const PositionsRef x0 = positions_view(start, "x0");
+            const PositionsRef x1 = positions_view(end, "x1");
+            self.last_start = reinterpret_cast<std::uintptr_t>(x0.data());
+            self.last_end = reinterpret_cast<std::uintptr_t>(x1.data());
             const std::vector<Collision>* collisions = nullptr;
             {
               nb::gil_scoped_release release;
-              collisions = &self.detector.detect(self.start, self.end);
+              collisions = &self.detector.detect(x0, x1);
             }
             return collision_arrays(*collisions);
           },
           nb::arg("x0"), nb::arg("x1"))
+      .def("_last_detect_inputs",
+           [](const PyDetector& self) { return std::make_tuple(self.last_start, self.last_end); },
+           "Addresses of the x0 and x1 data the last detect() handed to the C++ detector.")
       .def("stats", [](const PyDetector& self) {
         const DetectionStats& s = self.detector.stats();
         nb::dict d;

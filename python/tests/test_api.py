@@ -63,6 +63,60 @@ def test_column_major_and_other_dtypes_are_accepted():
     assert len(c_order.kind) == len(fortran.kind)
 
 
+def same_collisions(a: clothcd.Collisions, b: clothcd.Collisions) -> bool:
+    return all(np.array_equal(x, y) for x, y in zip(a, b))
+
+
+def data_address(array: np.ndarray) -> int:
+    return array.__array_interface__["data"][0]
+
+
+def test_detect_reads_float64_arrays_in_place():
+    cloth_vertices, cloth_faces = clothcd.make_paper_cloth("B")
+    rng = np.random.default_rng(3)
+    x0 = cloth_vertices.copy()
+    x1 = cloth_vertices + rng.normal(scale=0.02, size=cloth_vertices.shape)
+    detector = clothcd.CollisionDetector(cloth_faces, len(x0))
+    expected = detector.detect(x0, x1)
+    assert len(expected.kind) > 0
+    assert detector._detector._last_detect_inputs() == (data_address(x0), data_address(x1))
+    # Fortran order and the first three columns of wider rows: read in place too, with the same answer.
+    fortran = np.asfortranarray(x0)
+    padded = np.full((len(x1), 4), np.nan)
+    padded[:, :3] = x1
+    found = clothcd.CollisionDetector(cloth_faces, len(x0)).detect(fortran, padded[:, :3])
+    assert same_collisions(found, expected)
+    fresh = clothcd.CollisionDetector(cloth_faces, len(x0))
+    fresh.detect(fortran, padded[:, :3])
+    assert fresh._detector._last_detect_inputs() == (data_address(fortran), data_address(padded))
+    # Another dtype is converted: the detector reads a copy, which the addresses show.
+    x1_single = x1.astype(np.float32)
+    fresh.detect(x0, x1_single)
+    assert fresh._detector._last_detect_inputs()[0] == data_address(x0)
+    assert fresh._detector._last_detect_inputs()[1] != data_address(x1_single)
+    # Rows in reverse (a negative stride), numbered in reverse by the faces: the same collisions as a C-order copy.
+    last = len(x0) - 1
+    reverse_faces = last - cloth_faces
+    reversed_rows = clothcd.CollisionDetector(reverse_faces, len(x0)).detect(x0[::-1], x1[::-1])
+    copied = clothcd.CollisionDetector(reverse_faces, len(x0)).detect(x0[::-1].copy(), x1[::-1].copy())
+    assert len(reversed_rows.kind) > 0 and same_collisions(reversed_rows, copied)
+
+
+def test_obstacle_positions_in_any_order():
+    cloth_vertices, cloth_faces = clothcd.make_grid(8, 8, 1.0, 1.0)
+    plate_vertices = np.array([[-1.0, 0.0, -1.0], [2.0, 0.0, -1.0], [2.0, 0.0, 2.0], [-1.0, 0.0, 2.0]])
+    plate_faces = np.array([[0, 2, 1], [0, 3, 2]], dtype=np.int32)
+    x0 = cloth_vertices + [0.0, 0.05, 0.0]
+    results = []
+    for order in ("C", "F"):
+        detector = clothcd.CollisionDetector(cloth_faces, len(x0))
+        detector.add_obstacle(plate_vertices, plate_faces)
+        raised = np.array(plate_vertices + [0.0, 0.1, 0.0], order=order)
+        detector.set_obstacle_positions(1, np.array(plate_vertices, order=order), raised)
+        results.append(detector.detect(x0, x0))
+    assert len(results[0].kind) > 0 and same_collisions(results[0], results[1])
+
+
 def test_ccd_on_query_arrays():
     # A vertex falling through a triangle, and the same vertex beside it.
     triangle = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
