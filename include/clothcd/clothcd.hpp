@@ -33,6 +33,7 @@
 #include "clothcd/mesh/mesh_io.hpp"
 #include "clothcd/mesh/mesh_validation.hpp"
 #include "clothcd/mesh/model_catalog.hpp"
+#include "clothcd/mesh/positions_ref.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 #include "clothcd/render/image.hpp"
 #include "clothcd/render/rasterizer.hpp"
