@@ -1,11 +1,17 @@
-// Dataset generation: labels recomputed from each row's geometry, determinism, bad settings.
+// Dataset generation: the pairs are every candidate of the all-pairs broad phase reference, in canonical order; labels
+// recomputed from each row's geometry, determinism, bad settings.
 #include <catch2/catch.hpp>
 
 #include <stdexcept>
 #include <string>
 
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/swept_boxes.hpp"
+#include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
+#include "clothcd/simulation/scene.hpp"
+#include "clothcd/simulation/simulator.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 #include "support/test_support.hpp"
 
@@ -37,6 +43,32 @@ std::size_t colliding_rows(const PairDataset& d) {
   std::size_t n = 0;
   for (int label : d.exact_label) n += label == 1 ? 1 : 0;
   return n;
+}
+
+// The query of candidate i of `c` (vertex-face ones first), the bodies at `start`/`end`.
+ccd::CcdQuery candidate_query(const broadphase::CandidateSet& c, std::size_t i,
+                              const std::vector<const broadphase::BodyTopology*>& topology,
+                              const std::vector<Vertices>& start, const std::vector<Vertices>& end) {
+  ccd::CcdQuery q;
+  std::array<std::pair<int, int>, 4> points;  // (body, vertex)
+  if (i < c.vertex_face.size()) {
+    const broadphase::VertexFaceCandidate& vf = c.vertex_face[i];
+    q.kind = PairKind::VertexFace;
+    points[0] = {vf.vertex_body, vf.vertex};
+    for (int k = 0; k < 3; ++k) points[k + 1] = {vf.face_body, topology[vf.face_body]->faces(vf.face, k)};
+  } else {
+    const broadphase::EdgeEdgeCandidate& ee = c.edge_edge[i - c.vertex_face.size()];
+    q.kind = PairKind::EdgeEdge;
+    for (int k = 0; k < 2; ++k) {
+      points[k] = {ee.body_a, topology[ee.body_a]->edges[2 * ee.edge_a + k]};
+      points[k + 2] = {ee.body_b, topology[ee.body_b]->edges[2 * ee.edge_b + k]};
+    }
+  }
+  for (int k = 0; k < 4; ++k) {
+    q.start[k] = start[points[k].first].row(points[k].second).transpose();
+    q.end[k] = end[points[k].first].row(points[k].second).transpose();
+  }
+  return q;
 }
 
 }  // namespace
@@ -162,4 +194,66 @@ TEST_CASE("keep_collisions keeps every colliding candidate and samples the rest"
   CHECK(plain.dataset.row_count() == sampled.max_rows);
   CHECK(plain.collisions_seen == 0);  // only counted with keep_collisions
   CHECK(colliding_rows(plain.dataset) < collisions);
+}
+
+TEST_CASE("the generated pairs are every candidate of the all-pairs broad phase, in canonical order",
+          "[learning][gen-dataset]") {
+  DatasetGenerationSettings settings = tiny_settings();
+  settings.steps = 3;
+  settings.max_shift = 0.0;
+  settings.max_rows = 1000000000;  // every candidate becomes a row
+  const GeneratedDataset generated = generate_pair_dataset(settings);
+
+  // The reference: the same run, each step's free-flight motion searched pair by pair.
+  simulation::SceneSettings scene_settings;
+  scene_settings.name = "box";
+  scene_settings.cloth = 'A';
+  const simulation::Scene scene = simulation::make_scene(scene_settings);
+  simulation::SimulationSettings sim_settings;
+  sim_settings.dt = settings.dt;
+  simulation::Simulator simulator(scene, sim_settings);
+  std::vector<broadphase::BodyTopology> topologies{broadphase::build_body_topology(
+      scene.cloth.faces, static_cast<int>(scene.cloth.vertex_count()))};
+  for (const simulation::Obstacle& o : scene.obstacles)
+    topologies.push_back(broadphase::build_body_topology(o.rest.faces, static_cast<int>(o.rest.vertex_count())));
+  std::vector<const broadphase::BodyTopology*> topology;
+  for (const broadphase::BodyTopology& t : topologies) topology.push_back(&t);
+  std::vector<ccd::CcdQuery> expected;
+  for (int step = 0; step < settings.steps; ++step) {
+    std::vector<Vertices> start{simulator.state().positions}, end{simulator.state().positions};
+    end[0] += settings.dt * simulator.state().velocities;
+    end[0].rowwise() += settings.dt * settings.dt * sim_settings.cloth.gravity.transpose();
+    for (const simulation::Obstacle& o : scene.obstacles) {
+      start.push_back(o.positions_at(step));
+      end.push_back(o.positions_at(step + 1));
+    }
+    std::vector<broadphase::SweptBoxes> boxes(topologies.size());
+    std::vector<broadphase::BodyView> views;
+    for (std::size_t b = 0; b < topologies.size(); ++b) {
+      broadphase::compute_swept_boxes(topologies[b], start[b], end[b], settings.box_thickness, boxes[b]);
+      views.push_back({static_cast<int>(b), &topologies[b], &boxes[b], nullptr});
+    }
+    broadphase::CandidateSet candidates;
+    broadphase::brute_force_self_candidates(views[0], candidates);
+    for (std::size_t b = 1; b < views.size(); ++b) {
+      broadphase::brute_force_pair_candidates(views[0], views[b], candidates);
+    }
+    broadphase::sort_candidates(candidates);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      expected.push_back(candidate_query(candidates, i, topology, start, end));
+    }
+    (void)simulator.step();
+  }
+  REQUIRE(generated.candidates_seen == expected.size());
+  REQUIRE(generated.queries.size() == expected.size());
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const ccd::CcdQuery& a = generated.queries[i];
+    const ccd::CcdQuery& b = expected[i];
+    bool same = a.kind == b.kind;
+    for (int k = 0; k < 4; ++k) same = same && a.start[k] == b.start[k] && a.end[k] == b.end[k];
+    different += same ? 0 : 1;
+  }
+  CHECK(different == 0);
+  CHECK(expected.size() > 1000);
 }
