@@ -116,8 +116,9 @@ class CollisionDetector:
 
     def detect(self, x0: npt.ArrayLike, x1: npt.ArrayLike) -> Collisions:
         """Every collision of the step from cloth positions `x0` to `x1` ((N, 3) each). float64 arrays in any order
-        go to the detector without a copy (it copies them once into its own buffers, as for a C++ caller); other
-        dtypes are converted first. Runs without the GIL: do not modify `x0` or `x1` from another thread meanwhile."""
+        reach the C++ detector as views, without a copy (the detector then copies the positions once into its own
+        buffers, as it does for a C++ caller); other dtypes are converted first. Runs without the GIL: do not modify
+        `x0` or `x1` from another thread meanwhile."""
         kind, bodies, vertices, toi, parameters, normal, conservative = self._detector.detect(
             np.asarray(x0, dtype=np.float64), np.asarray(x1, dtype=np.float64))
         return Collisions(kind, bodies, vertices, toi, parameters, normal, conservative.view(bool))

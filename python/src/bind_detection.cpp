@@ -187,24 +187,28 @@ void bind_detection(nb::module_& m) {
         settings.thickness = thickness;
         settings.decide_exactly = exact;
         const ccd::CcdFilter culling = ccd_filter(filter);
-        std::vector<ccd::CcdQuery> batch(n);
+        // Each query is read from the array when it is needed: no copy of the whole batch.
+        const PairKind pair_kind = kind == "vf" ? PairKind::VertexFace : PairKind::EdgeEdge;
         const double* p = queries.data();
-        for (std::size_t i = 0; i < n; ++i) {
-          batch[i].kind = kind == "vf" ? PairKind::VertexFace : PairKind::EdgeEdge;
+        const auto query_at = [&](std::size_t i) {
+          ccd::CcdQuery query;
+          query.kind = pair_kind;
           for (std::size_t k = 0; k < 4; ++k) {
-            batch[i].start[k] = Eigen::Vector3d(p + 24 * i + 3 * k);
-            batch[i].end[k] = Eigen::Vector3d(p + 24 * i + 3 * (k + 4));
+            query.start[k] = Eigen::Vector3d(p + 24 * i + 3 * k);
+            query.end[k] = Eigen::Vector3d(p + 24 * i + 3 * (k + 4));
           }
-          ccd::validate_query(batch[i], settings);
-        }
+          return query;
+        };
+        for (std::size_t i = 0; i < n; ++i) ccd::validate_query(query_at(i), settings);
         std::vector<std::uint8_t> hit(n), culled(n);
         std::vector<double> toi(n, 1.0);
         {
           nb::gil_scoped_release release;
           for (std::size_t i = 0; i < n; ++i) {
-            culled[i] = ccd::filter_culls(culling, batch[i], settings) ? 1 : 0;
+            const ccd::CcdQuery query = query_at(i);
+            culled[i] = ccd::filter_culls(culling, query, settings) ? 1 : 0;
             if (culled[i]) continue;
-            const ccd::CcdResult result = ccd::continuous_collision(batch[i], settings);
+            const ccd::CcdResult result = ccd::continuous_collision(query, settings);
             hit[i] = result.hit ? 1 : 0;
             toi[i] = result.toi;
           }

@@ -197,5 +197,9 @@ def test_bad_input_raises_with_the_library_message(tmp_path):
         detector.set_obstacle_transforms(7, np.eye(4), np.eye(4))
     with pytest.raises(ValueError, match=r"\(N, 8, 3\)"):
         clothcd.ccd(np.zeros((3, 4, 3)))
+    queries = np.zeros((3, 8, 3))
+    queries[2, 5, 1] = np.inf
+    with pytest.raises(ValueError, match="NaN or infinite"):
+        clothcd.ccd(queries)
     with pytest.raises(ValueError):
         clothcd.simulate(clothcd.make_paper_cloth("A"), [], steps=-1)
