@@ -10,6 +10,7 @@
 #include <tbb/global_control.h>
 
 #include "clothcd/detection/collision_detector.hpp"
+#include "detection/same_collisions.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using namespace clothcd;
@@ -51,19 +52,6 @@ TEST_CASE("a large cloth's collisions do not depend on the number of threads", "
   REQUIRE(serial.size() > 100);
   for (const int threads : {1, 2, 4}) {
     INFO("threads " << threads);
-    const std::vector<Collision> parallel = detect_with(sheet, with_obstacle, threads);
-    REQUIRE(parallel.size() == serial.size());
-    for (std::size_t i = 0; i < serial.size(); ++i) {
-      const Collision &a = serial[i], &b = parallel[i];
-      REQUIRE(a.kind == b.kind);
-      for (int k = 0; k < 4; ++k) {
-        REQUIRE(a.vertices[k].body == b.vertices[k].body);
-        REQUIRE(a.vertices[k].vertex == b.vertices[k].vertex);
-      }
-      CHECK(a.toi == b.toi);
-      CHECK(a.parameters == b.parameters);
-      CHECK(a.normal == b.normal);
-      CHECK(a.conservative == b.conservative);
-    }
+    test::check_same(detect_with(sheet, with_obstacle, threads), serial);
   }
 }
