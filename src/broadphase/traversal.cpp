@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -174,49 +175,66 @@ double milliseconds_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// A node pair holding at least this many faces (both nodes together) is searched as a task of its own in a parallel
-// streamed search: enough tasks for every thread to take from, few enough that spawning costs nothing.
-constexpr int kSpawnFaces = 2048;
+// The parallel streamed search splits its node pairs into tasks down to about 1/kTaskShare of the root's faces, so
+// that a body whose pairs crowd into a few subtrees still gives every thread work; node pairs of fewer than
+// kMinSpawnFaces faces stay in the task that found them, and a search whose root holds fewer runs on the calling
+// thread.
+constexpr int kTaskShare = 64;
+constexpr int kMinSpawnFaces = 256;
 
-// The streamed search: depth-first from `root`; with `parallel`, the node pairs of large subtrees (kSpawnFaces) become
-// tasks of a TBB task group, which idle threads take, so one body against itself keeps every core busy.
+// One thread's state in a streamed search, reused by every task the thread runs (a task runs to its end before the
+// thread takes another).
+struct StreamThread {
+  TraversalStats stats;
+  CandidateSet buffer;  // candidates not yet handed to the sink
+  detail::LeafScratch scratch;
+  std::vector<Task> stack;
+};
+
+// The streamed search: depth-first from `root`; with `parallel`, the node pairs of large subtrees become tasks of a
+// TBB task group, which idle threads take, so one body against itself keeps every core busy. Each thread hands its
+// buffer to the sink whenever it holds a chunk, and what is left once every task is done.
 template <class Overlap, class LeafWork>
 void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8_t* dirty, const Task& root,
             const LeafWork& leaf_work, const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
-  const SimdLevel level = simd_level();
-  const bool spawn = settings.parallel && face_count(ta, root.a) + face_count(tb, root.b) >= kSpawnFaces;
-  tbb::enumerable_thread_specific<TraversalStats> thread_stats;
-  tbb::task_group group;
   auto faces = [&](const Task& t) { return face_count(ta, t.a) + (t.self ? 0 : face_count(tb, t.b)); };
+  const bool spawn = settings.parallel && faces(root) >= kMinSpawnFaces;
+  const int spawn_faces = std::max(kMinSpawnFaces, faces(root) / kTaskShare);
+  const SimdLevel level = simd_level();
+  tbb::enumerable_thread_specific<StreamThread> threads;
+  tbb::task_group group;
   std::function<void(const Task&)> run = [&](const Task& first) {
     const auto started = Clock::now();
-    TraversalStats& task_stats = spawn ? thread_stats.local() : stats;
-    CandidateSet buffer;
-    detail::LeafScratch scratch;
-    scratch.level = level;
-    std::vector<Task> stack{first};
+    StreamThread& thread = threads.local();
+    thread.scratch.level = level;
     auto push = [&](const Task& t) {
-      if (spawn && faces(t) >= kSpawnFaces) {
+      if (spawn && faces(t) >= spawn_faces) {
         group.run([&run, t] { run(t); });
       } else {
-        stack.push_back(t);
+        thread.stack.push_back(t);
       }
     };
-    while (!stack.empty()) {
-      const Task task = stack.back();
-      stack.pop_back();
-      step(ta, tb, overlap, dirty, task, task_stats, push, [&](const Task& t) {
-        leaf_work(t, buffer, task_stats, scratch);
-        pass_on(buffer, output, true);
+    thread.stack.assign(1, first);
+    while (!thread.stack.empty()) {
+      const Task task = thread.stack.back();
+      thread.stack.pop_back();
+      step(ta, tb, overlap, dirty, task, thread.stats, push, [&](const Task& t) {
+        leaf_work(t, thread.buffer, thread.stats, thread.scratch);
+        pass_on(thread.buffer, output, true);
       });
     }
-    pass_on(buffer, output, false);
-    task_stats.task_ms += milliseconds_since(started);
+    thread.stats.task_ms += milliseconds_since(started);
   };
-  if (!spawn) return run(root);  // a serial or small search stays on the calling thread
-  group.run([&] { run(root); });
-  group.wait();
-  for (const TraversalStats& s : thread_stats) stats.add(s);
+  if (spawn) {
+    group.run([&] { run(root); });
+    group.wait();
+  } else {
+    run(root);  // a serial or small search stays on the calling thread
+  }
+  for (StreamThread& thread : threads) {
+    pass_on(thread.buffer, output, false);
+    stats.add(thread.stats);
+  }
 }
 
 template <class Overlap, class LeafWork>
