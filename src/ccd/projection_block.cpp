@@ -70,7 +70,9 @@ struct PassDirections {
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-template <bool VertexFace>
+// `Thick`: thickness > 0. At thickness 0 the term thickness |s| is 0 whatever |s| is, so the square roots are skipped
+// (the same thresholds bit for bit).
+template <bool VertexFace, bool Thick>
 [[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, PassDirections pass,
                                                 std::uint8_t* out) {
   const auto& x = b.x;
@@ -104,9 +106,13 @@ template <bool VertexFace>
       // minima and maxima); lanes with a larger M are not culled whatever they compute.
       const bool usable = squared >= 1e-200 && squared <= 1e300;
       for (int c = 0; c < 3; ++c) s[c][i] = usable ? n[c] : 0.0;
-      const double norm = usable ? std::sqrt(squared) : 0.0;
       const double l1 = std::abs(s[0][i]) + std::abs(s[1][i]) + std::abs(s[2][i]);
-      threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
+      if constexpr (Thick) {
+        const double norm = usable ? std::sqrt(squared) : 0.0;
+        threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
+      } else {
+        threshold[i] = kBoundFactor * l1 * largest[i] + kTiny;
+      }
     }
     const auto dot = [&](int t, int k, int i) INLINE_LAMBDA {
       return s[0][i] * x[t][k][0][i] + s[1][i] * x[t][k][1][i] + s[2][i] * x[t][k][2][i];
@@ -176,21 +182,33 @@ template <bool VertexFace>
 // Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
 // the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
 void filter_baseline(const QueryBlock& b, double thickness, PassDirections pass, std::uint8_t* out) {
-  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
-  filter_block<false>(b, thickness, pass, out);
+  if (thickness > 0.0) {
+    if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
+    return filter_block<false, true>(b, thickness, pass, out);
+  }
+  if (b.kind == PairKind::VertexFace) return filter_block<true, false>(b, thickness, pass, out);
+  filter_block<false, false>(b, thickness, pass, out);
 }
 
 #if defined(CLOTHCD_SIMD_X86)
 CLOTHCD_SIMD_AVX2 void filter_avx2(const QueryBlock& b, double thickness, PassDirections pass,
                                                  std::uint8_t* out) {
-  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
-  filter_block<false>(b, thickness, pass, out);
+  if (thickness > 0.0) {
+    if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
+    return filter_block<false, true>(b, thickness, pass, out);
+  }
+  if (b.kind == PairKind::VertexFace) return filter_block<true, false>(b, thickness, pass, out);
+  filter_block<false, false>(b, thickness, pass, out);
 }
 
 CLOTHCD_SIMD_AVX512 void filter_avx512(const QueryBlock& b, double thickness, PassDirections pass,
                                                       std::uint8_t* out) {
-  if (b.kind == PairKind::VertexFace) return filter_block<true>(b, thickness, pass, out);
-  filter_block<false>(b, thickness, pass, out);
+  if (thickness > 0.0) {
+    if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
+    return filter_block<false, true>(b, thickness, pass, out);
+  }
+  if (b.kind == PairKind::VertexFace) return filter_block<true, false>(b, thickness, pass, out);
+  filter_block<false, false>(b, thickness, pass, out);
 }
 #endif
 
