@@ -10,9 +10,10 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
-#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -175,15 +176,14 @@ double milliseconds_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// The parallel streamed search splits its node pairs into tasks down to about 1/kTaskShare of the root's faces, so
-// that a body whose pairs crowd into a few subtrees still gives every thread work; node pairs of fewer than
-// kMinSpawnFaces faces stay in the task that found them, and a search whose root holds fewer runs on the calling
-// thread.
-constexpr int kTaskShare = 64;
-constexpr int kMinSpawnFaces = 256;
+// The parallel streamed search hands a node pair of at least kMinSpawnFaces faces to another task only while fewer
+// than kPendingPerThread tasks per thread wait to be taken (lazy splitting): idle threads always find work, even when
+// the pairs crowd into a few subtrees, and a busy search does not pay for tasks nobody needs. A search whose root holds
+// fewer faces runs on the calling thread.
+constexpr int kMinSpawnFaces = 128;
+constexpr int kPendingPerThread = 2;
 
-// One thread's state in a streamed search, reused by every task the thread runs (a task runs to its end before the
-// thread takes another).
+// One thread's state in a streamed search, reused by the tasks the thread runs one after the other.
 struct StreamThread {
   TraversalStats stats;
   CandidateSet buffer;  // candidates not yet handed to the sink
@@ -199,7 +199,8 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
             const LeafWork& leaf_work, const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
   auto faces = [&](const Task& t) { return face_count(ta, t.a) + (t.self ? 0 : face_count(tb, t.b)); };
   const bool spawn = settings.parallel && faces(root) >= kMinSpawnFaces;
-  const int spawn_faces = std::max(kMinSpawnFaces, faces(root) / kTaskShare);
+  const int most_pending = kPendingPerThread * tbb::this_task_arena::max_concurrency();
+  std::atomic<int> pending{0};  // tasks spawned and not yet started
   const SimdLevel level = simd_level();
   tbb::enumerable_thread_specific<StreamThread> threads;
   tbb::task_group group;
@@ -208,8 +209,12 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
     StreamThread& thread = threads.local();
     thread.scratch.level = level;
     auto push = [&](const Task& t) {
-      if (spawn && faces(t) >= spawn_faces) {
-        group.run([&run, t] { run(t); });
+      if (spawn && faces(t) >= kMinSpawnFaces && pending.load(std::memory_order_relaxed) < most_pending) {
+        pending.fetch_add(1, std::memory_order_relaxed);
+        group.run([&run, &pending, t] {
+          pending.fetch_sub(1, std::memory_order_relaxed);
+          run(t);
+        });
       } else {
         thread.stack.push_back(t);
       }
@@ -220,7 +225,11 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
       thread.stack.pop_back();
       step(ta, tb, overlap, dirty, task, thread.stats, push, [&](const Task& t) {
         leaf_work(t, thread.buffer, thread.stats, thread.scratch);
-        pass_on(thread.buffer, output, true);
+        // Isolated: a sink that waits for TBB work of its own (a culler or an observer may) must not let this thread
+        // take another task of the search meanwhile, which would use this thread's state.
+        if (thread.buffer.size() >= output.chunk) {
+          tbb::this_task_arena::isolate([&] { pass_on(thread.buffer, output, false); });
+        }
       });
     }
     thread.stats.task_ms += milliseconds_since(started);
@@ -231,9 +240,17 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
   } else {
     run(root);  // a serial or small search stays on the calling thread
   }
+  // The threads' last partial chunks, on parallel tasks too (on one thread they would hold up the search's end).
+  std::vector<StreamThread*> left;
   for (StreamThread& thread : threads) {
-    pass_on(thread.buffer, output, false);
+    if (thread.buffer.size() > 0) left.push_back(&thread);
     stats.add(thread.stats);
+  }
+  if (spawn && left.size() > 1) {
+    tbb::parallel_for(std::size_t{0}, left.size(), [&](std::size_t i) { pass_on(left[i]->buffer, output, false); },
+                      tbb::simple_partitioner());
+  } else {
+    for (StreamThread* thread : left) pass_on(thread->buffer, output, false);
   }
 }
 

@@ -2,8 +2,10 @@
 // exactly the pairs of the collecting searches, which the brute-force tests check: self and pair searches, serial and
 // parallel, of every chunk size, unrestricted and restricted to moved vertices (both restricted paths).
 #include <catch2/catch.hpp>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <mutex>
@@ -36,6 +38,22 @@ class CollectingSink final : public CandidateSink {
 
  private:
   std::mutex mutex_;
+};
+
+// A sink that waits for TBB work of its own in every call, as a culler or an observer may: while it waits, its thread
+// may take other tasks of the search.
+class WaitingSink final : public CandidateSink {
+ public:
+  void consume(const CandidateSet& chunk) override {
+    tbb::parallel_for(0, 16, [](int) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(50);
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    });
+    collecting.consume(chunk);
+  }
+
+  CollectingSink collecting;
 };
 
 CandidateSet sorted(CandidateSet set) {
@@ -99,4 +117,18 @@ TEST_CASE("streamed searches find exactly the collected searches' pairs", "[broa
 
   settings.chunk_pairs = 0;
   CHECK_THROWS_AS(find_self_candidates(cloth_body.view(0), settings, self_sink), std::invalid_argument);
+}
+
+TEST_CASE("a streamed search stays exact when its sink waits for parallel work", "[broadphase][stream]") {
+  std::mt19937 rng(23);
+  const TriangleMesh cloth = folded_sheet(48);
+  TestBody cloth_body(cloth, jitter(cloth.vertices, 0.03, rng), 0.01, {VolumeKind::Aabb, 32});
+  TraversalSettings settings{true, nullptr};
+  settings.chunk_pairs = 16;
+  CandidateSet collected;
+  find_self_candidates(cloth_body.view(0), settings, collected);
+  REQUIRE(collected.size() > 1000);
+  WaitingSink sink;
+  find_self_candidates(cloth_body.view(0), settings, sink);
+  check_same(sorted(sink.collecting.found), sorted(collected));
 }
