@@ -96,7 +96,7 @@ SectionReport run_ccd(const BenchContext& context) {
     network_note = "No pair network was found, so the network row is missing.";
   } else {
     network = std::make_unique<learning::NetworkCuller>(context.network_model_dir.string());
-    network_note = "Network: " + context.network_model_dir.string() +
+    network_note = "Network: " + report_path(context.network_model_dir, context.repository) +
                    " behind the detector's safety rule (its drops are confirmed by the combined filters).";
   }
   const int repeat = context.quick ? 1 : 3;
@@ -150,7 +150,7 @@ SectionReport run_ccd(const BenchContext& context) {
   write_bar_chart_svg((context.out_dir / "ccd_culling.svg").string(), chart);
 
   std::string md = "## CCD on the public benchmark's handcrafted queries\n\n";
-  md += "Queries: " + context.ccd_queries->string() + " (" + std::to_string(all.size()) +
+  md += "Queries: " + report_path(*context.ccd_queries, context.repository) + " (" + std::to_string(all.size()) +
         " queries, ground truth in column 7). Time: whole batch (culling, then the safe narrow phase on the kept "
         "queries), best of " + std::to_string(repeat) + ", one thread; median: one query at a time. " + network_note +
         "\n\n";

@@ -40,6 +40,13 @@ std::string csv_text(const std::string& value) {
   return quoted + "\"";
 }
 
+std::string report_path(const std::filesystem::path& path, const std::filesystem::path& repository) {
+  if (repository.empty()) return path.string();
+  std::filesystem::path shown = path.lexically_normal().lexically_proximate(repository.lexically_normal());
+  if (!shown.has_filename() && shown.has_parent_path()) shown = shown.parent_path();  // no trailing separator
+  return shown.string();
+}
+
 std::string number(double value, int digits) {
   if (!std::isfinite(value)) return "-";
   char buffer[64];

@@ -32,6 +32,10 @@ class CsvFile {
 /// `value` quoted for a CSV cell when it holds a comma or a quote.
 [[nodiscard]] std::string csv_text(const std::string& value);
 
+/// `path` as the report shows it: relative to the repository `repository` when one is given (a folder beside it as
+/// ../name/...), so that the report names no folder of the machine it ran on; else as given.
+[[nodiscard]] std::string report_path(const std::filesystem::path& path, const std::filesystem::path& repository);
+
 /// `value` with `digits` significant digits (plain notation when reasonable), "-" when not finite.
 [[nodiscard]] std::string number(double value, int digits = 4);
 
