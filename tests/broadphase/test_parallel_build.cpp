@@ -2,7 +2,10 @@
 // order, owned primitives, boxes, packed boxes and volumes, bit for bit, on meshes large enough for the parallel split to run.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
+#include <string>
 #include <random>
 #include <vector>
 
@@ -95,5 +98,32 @@ TEST_CASE("a hierarchy built on several threads equals the serial build, bit for
     TriangleMesh same = test::random_soup(3, 9000, rng);
     for (int f = 0; f < static_cast<int>(same.faces.rows()); ++f) same.faces.row(f) << 0, 1, 2;
     check_parallel_equals_serial(same, same.vertices, volume);
+  }
+}
+
+TEST_CASE("a build with a non-finite box names the first such face, serial and parallel", "[broadphase][parallel]") {
+  const TriangleMesh grid = make_grid(100, 50, 2.0, 1.0);  // 9,702 triangles: the parallel fill runs
+  const BodyTopology topology = build_body_topology(grid.faces, static_cast<int>(grid.vertex_count()));
+  Vertices end = grid.vertices;
+  end(grid.faces(7000, 1), 2) = std::numeric_limits<double>::quiet_NaN();
+  end(grid.faces(9000, 0), 0) = std::numeric_limits<double>::infinity();
+  SweptBoxes boxes;
+  compute_swept_vertex_boxes(grid.vertices, end, 0.0, boxes);
+  int first = -1;  // the first face whose box has a non-finite centre
+  for (int f = 0; f < static_cast<int>(grid.faces.rows()) && first < 0; ++f) {
+    FlatBox b = boxes.vertices[grid.faces(f, 0)];
+    b.expand(boxes.vertices[grid.faces(f, 1)]);
+    b.expand(boxes.vertices[grid.faces(f, 2)]);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(b.min[k] + b.max[k])) first = f;
+    }
+  }
+  REQUIRE(first >= 0);
+  for (const bool parallel : {false, true}) {
+    BvhSettings settings;
+    settings.parallel = parallel;
+    Bvh bvh(settings);
+    CHECK_THROWS_WITH(bvh.build(topology, boxes, grid.vertices, end),
+                      "bvh: face " + std::to_string(first) + " has a NaN or infinite box");
   }
 }
