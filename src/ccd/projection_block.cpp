@@ -52,7 +52,7 @@ template <bool VertexFace, class Dot>
       above = std::min(above, low - threshold[i]);
       below = std::max(below, high + threshold[i]);
     }
-    culled[i] = (above > 0.0) | (below < 0.0) ? 1.0 : culled[i];
+    culled[i] = ((above > 0.0) | (below < 0.0)) ? 1.0 : culled[i];
   }
 }
 

@@ -212,7 +212,8 @@ struct CollisionDetector::Impl {
 
   // This call's collisions in canonical order: vertex-face ones first, each kind sorted like
   // broadphase::sort_candidates would sort the candidates.
-  void collect() {    sort_by_key(vertex_face_hits, order, sort_scratch, sorted);
+  void collect() {
+    sort_by_key(vertex_face_hits, order, sort_scratch, sorted);
     sort_by_key(edge_edge_hits, order, sort_scratch, sorted);
     collisions.clear();
     collisions.reserve(vertex_face_hits.size() + edge_edge_hits.size());
