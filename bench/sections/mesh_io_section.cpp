@@ -1,7 +1,7 @@
 // Section "mesh-io": loading a simulation frame with clothcd's own readers against assimp (the path every format took
 // before), in the same run. The frame is the shared rod-twist step (binary double PLY, 79,864 faces) when the shared
 // steps are there (--scalable-ccd, ../shared beside the checkout by default), else a generated cloth of about that size;
-// it is also written as ASCII PLY and OBJ to time those readers.
+// it is also written as ASCII PLY and OBJ (in a temporary folder) to time those readers.
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -45,10 +45,11 @@ double median(std::vector<double> values) {
 }
 
 SectionReport run_mesh_io(const BenchContext& context) {
+  const ScratchFolder scratch("mesh-io");
   fs::path frame = context.scalable_ccd ? *context.scalable_ccd / "rod-twist" / "t0.ply" : fs::path();
   std::string source = "the shared rod-twist frame (`scalable-ccd-sample/rod-twist/t0.ply`)";
   if (frame.empty() || !fs::exists(frame)) {
-    frame = context.out_dir / "mesh_io_cloth.ply";
+    frame = scratch.path() / "cloth.ply";
     save_mesh(make_grid(201, 201), frame, PlyEncoding::binary_little_endian);
     source = "a generated 201 x 201 cloth (no shared data here)";
   }
@@ -56,7 +57,7 @@ SectionReport run_mesh_io(const BenchContext& context) {
   keep_all.join_identical_vertices = false;
   keep_all.drop_degenerate_faces = false;
   const TriangleMesh mesh = load_mesh(frame, keep_all);
-  const fs::path ascii = context.out_dir / "mesh_io_frame.ply", obj = context.out_dir / "mesh_io_frame.obj";
+  const fs::path ascii = scratch.path() / "frame.ply", obj = scratch.path() / "frame.obj";
   save_mesh(mesh, ascii);
   save_mesh(mesh, obj);
 

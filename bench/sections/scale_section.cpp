@@ -71,26 +71,6 @@ std::vector<ThrownBodiesSpec> generated_specs(const BenchContext& context) {
   return specs;
 }
 
-// A temporary folder removed with everything in it when this goes out of scope.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string pattern = (fs::temp_directory_path() / "clothcd-bench-scale-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a folder in " + pattern);
-    path_ = pattern;
-  }
-  ~ScratchFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
 // The frames as `clothcd detect` reads them, written for the peer (format in bench/peers/ipctk_candidates.py).
 void write_peer_scene(const MeshFrames& frames, const fs::path& path) {
   std::ofstream out(path, std::ios::binary);
@@ -191,7 +171,7 @@ std::string mb(double value) { return fixed(value, 1) + " MB"; }
 std::string ms(double value) { return number(value, 4) + " ms"; }
 
 SectionReport run_scale(const BenchContext& context) {
-  const ScratchFolder scratch;
+  const ScratchFolder scratch("scale");
   const fs::path clothcd = context.clothcd_program.empty()
                                ? fs::read_symlink("/proc/self/exe").parent_path() / "clothcd"
                                : fs::absolute(context.clothcd_program);

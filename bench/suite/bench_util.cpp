@@ -1,6 +1,8 @@
 // Timing, CSV and formatting helpers of the benchmark sections.
 #include "bench_util.hpp"
 
+#include <stdlib.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -38,6 +40,17 @@ std::string csv_text(const std::string& value) {
   std::string quoted = "\"";
   for (const char c : value) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
+}
+
+ScratchFolder::ScratchFolder(const std::string& purpose) {
+  std::string pattern = (std::filesystem::temp_directory_path() / ("clothcd-bench-" + purpose + "-XXXXXX")).string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot create a folder in " + pattern);
+  path_ = pattern;
+}
+
+ScratchFolder::~ScratchFolder() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
 }
 
 std::string report_path(const std::filesystem::path& path, const std::filesystem::path& repository) {

@@ -13,6 +13,22 @@ namespace clothcd::bench {
 /// Median wall time of `runs` calls of `work` (runs >= 1), in milliseconds.
 [[nodiscard]] double median_ms(int runs, const std::function<void()>& work);
 
+/// A new folder in the system's temporary folder, removed with everything in it when this goes out of scope: where a
+/// section writes the files it only reads back (frames, converted meshes), never into the report's folder.
+class ScratchFolder {
+ public:
+  /// Creates the folder, named after `purpose` (e.g. "scale"); throws std::runtime_error when it cannot.
+  explicit ScratchFolder(const std::string& purpose);
+  ~ScratchFolder();
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  /// The folder.
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 /// Wall time of one call of `work`, in milliseconds.
 [[nodiscard]] double time_ms(const std::function<void()>& work);
 
