@@ -179,7 +179,7 @@ double milliseconds_since(Clock::time_point t) {
 // The parallel streamed search hands a node pair of at least kMinSpawnFaces faces to another task only while fewer
 // than kPendingPerThread tasks per thread wait to be taken (lazy splitting): idle threads always find work, even when
 // the pairs crowd into a few subtrees, and a busy search does not pay for tasks nobody needs. A search whose root holds
-// fewer faces runs on the calling thread.
+// fewer faces, or one with a single thread to run on, runs on the calling thread.
 constexpr int kMinSpawnFaces = 128;
 constexpr int kPendingPerThread = 2;
 
@@ -198,8 +198,9 @@ template <class Overlap, class LeafWork>
 void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uint8_t* dirty, const Task& root,
             const LeafWork& leaf_work, const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
   auto faces = [&](const Task& t) { return face_count(ta, t.a) + (t.self ? 0 : face_count(tb, t.b)); };
-  const bool spawn = settings.parallel && faces(root) >= kMinSpawnFaces;
-  const int most_pending = kPendingPerThread * tbb::this_task_arena::max_concurrency();
+  const int threads_here = tbb::this_task_arena::max_concurrency();
+  const bool spawn = settings.parallel && threads_here > 1 && faces(root) >= kMinSpawnFaces;
+  const int most_pending = kPendingPerThread * threads_here;
   std::atomic<int> pending{0};  // tasks spawned and not yet started
   const SimdLevel level = simd_level();
   tbb::enumerable_thread_specific<StreamThread> threads;
