@@ -126,8 +126,9 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 /// Runs one filter; true when it culls the pair.
 [[nodiscard]] bool filter_culls(CcdFilter filter, const CcdQuery& query, const CcdSettings& settings = {});
 
-/// Batched filtering for the detector: keep[i] = 1 when queries[i] survives `filter`, 0 when culled.
-/// keep is resized to queries.size(); returns the number kept.
+/// filter_culls over a vector of queries: keep[i] = 1 when queries[i] survives `filter`, 0 when culled. The per-pair
+/// filters, one query at a time (the references the block filters are tested against; the detector runs
+/// cull_pair_block on its pair blocks). keep is resized to queries.size(); returns the number kept.
 std::size_t filter_batch(const std::vector<CcdQuery>& queries, CcdFilter filter, const CcdSettings& settings,
                          std::vector<std::uint8_t>& keep);
 
