@@ -6,13 +6,13 @@
 
 #include <algorithm>
 #include <mutex>
-#include <random>
 #include <set>
 #include <tuple>
 
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
+#include "detection/cloth_over_sphere.hpp"
 
 using namespace clothcd;
 
@@ -57,16 +57,7 @@ TEST_CASE("the block observer sees every candidate pair once, with its culling a
   const bool parallel = GENERATE(false, true);
   const int block_pairs = GENERATE(7, 1024);
   const double thickness = GENERATE(0.0, 0.01);
-  TriangleMesh cloth = make_grid(12, 12, 1.6, 1.6);
-  cloth.vertices.col(1).array() += 0.62;
-  const TriangleMesh obstacle = make_uv_sphere(0.6, 12, 8);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> jitter(-0.03, 0.03);
-  Vertices end = cloth.vertices;
-  for (Eigen::Index v = 0; v < end.rows(); ++v) {
-    end(v, 1) -= 0.15 + 0.1 * std::cos(3.0 * cloth.vertices(v, 0));
-    for (int k = 0; k < 3; ++k) end(v, k) += jitter(rng);
-  }
+  const auto [cloth, end, obstacle] = test::cloth_over_sphere(0.15);
 
   DetectorSettings settings;
   settings.culling = culling;

@@ -14,6 +14,8 @@
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
+#include "detection/cloth_over_sphere.hpp"
+#include "detection/same_collisions.hpp"
 
 using namespace clothcd;
 
@@ -164,16 +166,7 @@ TEST_CASE("detector output and counts do not depend on the block size", "[detect
   const CullingMode culling = GENERATE(CullingMode::None, CullingMode::Projection, CullingMode::Filters,
                                        CullingMode::Network);
   const double thickness = GENERATE(0.0, 0.01);
-  TriangleMesh cloth = make_grid(12, 12, 1.6, 1.6);
-  cloth.vertices.col(1).array() += 0.62;
-  const TriangleMesh obstacle = make_uv_sphere(0.6, 12, 8);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> jitter(-0.03, 0.03);
-  Vertices end = cloth.vertices;
-  for (Eigen::Index v = 0; v < end.rows(); ++v) {
-    end(v, 1) -= 0.12 + 0.1 * std::cos(3.0 * cloth.vertices(v, 0));
-    for (int k = 0; k < 3; ++k) end(v, k) += jitter(rng);
-  }
+  const auto [cloth, end, obstacle] = test::cloth_over_sphere(0.12);
   std::vector<Collision> reference;
   DetectionStats reference_stats;
   for (const int block_pairs : {1024, 1, 7, 16, 100}) {
@@ -194,14 +187,7 @@ TEST_CASE("detector output and counts do not depend on the block size", "[detect
         REQUIRE_FALSE(reference.empty());
         continue;
       }
-      REQUIRE(found.size() == reference.size());
-      for (std::size_t i = 0; i < found.size(); ++i) {
-        CHECK(key_of(found[i]) == key_of(reference[i]));
-        CHECK(found[i].toi == reference[i].toi);
-        CHECK(found[i].parameters == reference[i].parameters);
-        CHECK(found[i].normal == reference[i].normal);
-        CHECK(found[i].conservative == reference[i].conservative);
-      }
+      test::check_same(found, reference);
       CHECK(stats.candidates_vertex_face == reference_stats.candidates_vertex_face);
       CHECK(stats.candidates_edge_edge == reference_stats.candidates_edge_edge);
       CHECK(stats.culled == reference_stats.culled);
