@@ -179,36 +179,32 @@ template <bool VertexFace, bool Thick>
 
 #undef INLINE_LAMBDA
 
-// Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
-// the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
-void filter_baseline(const QueryBlock& b, double thickness, PassDirections pass, std::uint8_t* out) {
+// The template for the block's kind and for thickness 0 or not; inlined into each instruction set's function below.
+[[gnu::always_inline]] inline void filter_any(const QueryBlock& b, double thickness, PassDirections pass,
+                                              std::uint8_t* out) {
   if (thickness > 0.0) {
     if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
     return filter_block<false, true>(b, thickness, pass, out);
   }
   if (b.kind == PairKind::VertexFace) return filter_block<true, false>(b, thickness, pass, out);
   filter_block<false, false>(b, thickness, pass, out);
+}
+
+// Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
+// the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
+void filter_baseline(const QueryBlock& b, double thickness, PassDirections pass, std::uint8_t* out) {
+  filter_any(b, thickness, pass, out);
 }
 
 #if defined(CLOTHCD_SIMD_X86)
 CLOTHCD_SIMD_AVX2 void filter_avx2(const QueryBlock& b, double thickness, PassDirections pass,
                                                  std::uint8_t* out) {
-  if (thickness > 0.0) {
-    if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
-    return filter_block<false, true>(b, thickness, pass, out);
-  }
-  if (b.kind == PairKind::VertexFace) return filter_block<true, false>(b, thickness, pass, out);
-  filter_block<false, false>(b, thickness, pass, out);
+  filter_any(b, thickness, pass, out);
 }
 
 CLOTHCD_SIMD_AVX512 void filter_avx512(const QueryBlock& b, double thickness, PassDirections pass,
                                                       std::uint8_t* out) {
-  if (thickness > 0.0) {
-    if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
-    return filter_block<false, true>(b, thickness, pass, out);
-  }
-  if (b.kind == PairKind::VertexFace) return filter_block<true, false>(b, thickness, pass, out);
-  filter_block<false, false>(b, thickness, pass, out);
+  filter_any(b, thickness, pass, out);
 }
 #endif
 
