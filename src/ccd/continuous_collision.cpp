@@ -72,8 +72,7 @@ struct IVec {
 using Positions = std::array<IVec, 4>;
 
 // Enclosures of the four points at time t (exact double).
-Positions positions_at(const CcdQuery& query, double t) {
-  Positions x;
+void positions_at(const CcdQuery& query, double t, Positions& x) {
   for (int i = 0; i < 4; ++i) {
     for (int d = 0; d < 3; ++d) {
       const double s = query.start[i][d];
@@ -87,7 +86,6 @@ Positions positions_at(const CcdQuery& query, double t) {
       }
     }
   }
-  return x;
 }
 
 struct PointSet {
@@ -95,27 +93,43 @@ struct PointSet {
   int count = 0;
 };
 
-PointSet difference_points(PairKind kind, const Positions& x) {
-  PointSet set;
+void difference_points(PairKind kind, const Positions& x, PointSet& set) {
+  set.count = 0;
   if (kind == PairKind::VertexFace) {
     for (int j = 1; j < 4; ++j) set.w[set.count++] = x[0] - x[j];
   } else {
     for (int i = 0; i < 2; ++i)
       for (int j = 2; j < 4; ++j) set.w[set.count++] = x[i] - x[j];
   }
-  return set;
 }
 
-// Bernstein coefficients of D on the piece whose end positions are x0 and x1 (the middle two times 3). D is trilinear
-// in (a, b, c), so they are a0.(b0 x c0), a1.(b0 x c0) + a0.(b1 x c0 + b0 x c1), and so on: four cross products
-// shared by the six dot products (interval arithmetic is subdistributive: no wider than the ten determinants, up to
-// rounding).
-std::array<Interval, 4> bernstein_of_d(const Positions& x0, const Positions& x1) {
-  const IVec a0 = x0[1] - x0[0], b0 = x0[2] - x0[0], c0 = x0[3] - x0[0];
-  const IVec a1 = x1[1] - x1[0], b1 = x1[2] - x1[0], c1 = x1[3] - x1[0];
-  const IVec bc00 = cross(b0, c0), bc11 = cross(b1, c1);
-  const IVec bc_mixed = cross(b1, c0) + cross(b0, c1);
-  return {dot(a0, bc00), dot(a1, bc00) + dot(a0, bc_mixed), dot(a1, bc_mixed) + dot(a0, bc11), dot(a1, bc11)};
+// D's ingredients on a piece whose end positions are x0 and x1: the edge vectors from x[0] at both ends and their end
+// cross products, from which D at the ends follows (what a touch at t = 0 or 1 needs) and, only when a piece is not
+// cleared first, its middle Bernstein coefficients.
+struct DetParts {
+  IVec a0, b0, c0, a1, b1, c1, bc00, bc11;
+};
+
+DetParts det_parts(const Positions& x0, const Positions& x1) {
+  DetParts p;
+  p.a0 = x0[1] - x0[0];
+  p.b0 = x0[2] - x0[0];
+  p.c0 = x0[3] - x0[0];
+  p.a1 = x1[1] - x1[0];
+  p.b1 = x1[2] - x1[0];
+  p.c1 = x1[3] - x1[0];
+  p.bc00 = cross(p.b0, p.c0);
+  p.bc11 = cross(p.b1, p.c1);
+  return p;
+}
+
+// Bernstein coefficients of D on the piece (the middle two times 3). D is trilinear in (a, b, c), so they are
+// a0.(b0 x c0), a1.(b0 x c0) + a0.(b1 x c0 + b0 x c1), and so on: four cross products shared by the six dot products
+// (interval arithmetic is subdistributive: no wider than the ten determinants, up to rounding).
+std::array<Interval, 4> bernstein_of_d(const DetParts& p) {
+  const IVec bc_mixed = cross(p.b1, p.c0) + cross(p.b0, p.c1);
+  return {dot(p.a0, p.bc00), dot(p.a1, p.bc00) + dot(p.a0, bc_mixed), dot(p.a1, bc_mixed) + dot(p.a0, p.bc11),
+          dot(p.a1, p.bc11)};
 }
 
 int common_strict_sign(const std::array<Interval, 4>& b) {
@@ -194,13 +208,23 @@ PieceOutcome classify_projections(const PointSet& boxes, bool d_changes_sign) {
   return PieceOutcome::Undecided;
 }
 
-// True when D (d_at_end, its enclosure there) may vanish at the step's end with positions x and the origin may be in
+// True when D (d_at_end, its enclosure there) may vanish at the step's end, where W is w, and the origin may be in
 // conv W there: pieces ending there can never be decided by intervals (an exact touch at t = 0 or 1), so the exact
 // tiers decide the query at once.
-bool undecidable_end(PairKind kind, const Positions& x, const Interval& d_at_end) {
+bool undecidable_end(const PointSet& w, const Interval& d_at_end) {
   if (certain_sign(d_at_end) != 0) return false;
-  const PointSet w = difference_points(kind, x);
   return !boxes_exclude_origin(w, 0.0) && classify_projections(w, false) != PieceOutcome::Clear;
+}
+
+// One end of a piece: the four positions and W there (each computed once, shared by the two pieces that meet there).
+struct PieceEnd {
+  Positions x;
+  PointSet w;
+};
+
+void piece_end(const CcdQuery& query, double t, PieceEnd& end) {
+  positions_at(query, t, end.x);
+  difference_points(query.kind, end.x, end.w);
 }
 
 struct Search {
@@ -234,17 +258,15 @@ double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4
   return t0;
 }
 
-// known_bernstein: bernstein_of_d(x0, x1) when the caller has it already, else nullptr.
-PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Positions& x0, const Positions& x1,
-                                  int depth, const std::array<Interval, 4>* known_bernstein = nullptr) {
-  const PairKind kind = search.query.kind;
-  const PointSet w0 = difference_points(kind, x0);
-  const PointSet w1 = difference_points(kind, x1);
+// known_parts: det_parts(e0.x, e1.x) when the caller has them already, else nullptr.
+PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PieceEnd& e0, const PieceEnd& e1,
+                                  int depth, const DetParts* known_parts = nullptr) {
   PointSet boxes;
-  boxes.count = w0.count;
-  for (int m = 0; m < w0.count; ++m) boxes.w[m] = hull(w0.w[m], w1.w[m]);
+  boxes.count = e0.w.count;
+  for (int m = 0; m < e0.w.count; ++m) boxes.w[m] = hull(e0.w.w[m], e1.w.w[m]);
   if (boxes_exclude_origin(boxes, 0.0)) return PieceOutcome::Clear;
-  const std::array<Interval, 4> bernstein = known_bernstein ? *known_bernstein : bernstein_of_d(x0, x1);
+  const std::array<Interval, 4> bernstein =
+      known_parts != nullptr ? bernstein_of_d(*known_parts) : bernstein_of_d(det_parts(e0.x, e1.x));
   if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
   const int sign_start = certain_sign(bernstein[0]);
   const int sign_end = certain_sign(bernstein[3]);
@@ -260,10 +282,11 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
     search.toi = first_root_lower_bound(t0, t1, bernstein);
     return PieceOutcome::Undecided;
   }
-  const Positions xm = positions_at(search.query, mid);
-  const PieceOutcome left = search_exact_contact(search, t0, mid, x0, xm, depth + 1);
+  PieceEnd em;
+  piece_end(search.query, mid, em);
+  const PieceOutcome left = search_exact_contact(search, t0, mid, e0, em, depth + 1);
   if (left != PieceOutcome::Clear) return left;
-  return search_exact_contact(search, mid, t1, xm, x1, depth + 1);
+  return search_exact_contact(search, mid, t1, em, e1, depth + 1);
 }
 
 exact::RationalPoints rational_points(const CcdQuery& query) {
@@ -354,12 +377,14 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
   if (!nonpenetration_checked && nonpenetration_filter_culls(query)) return CcdResult{};
   if (fits_fast_path(query)) {
     double undecided_from = 0.0;  // lower bound of the earliest contact when undecided
-    const Positions start = positions_at(query, 0.0), end = positions_at(query, 1.0);
-    // The whole step's Bernstein coefficients: their ends are D at t = 0 and 1, and the first piece reuses them.
-    const std::array<Interval, 4> bernstein = bernstein_of_d(start, end);
-    if (!undecidable_end(query.kind, start, bernstein[0]) && !undecidable_end(query.kind, end, bernstein[3])) {
+    PieceEnd start, end;
+    piece_end(query, 0.0, start);
+    piece_end(query, 1.0, end);
+    // D at t = 0 and 1 from the whole step's parts, which the first piece reuses.
+    const DetParts parts = det_parts(start.x, end.x);
+    if (!undecidable_end(start.w, dot(parts.a0, parts.bc00)) && !undecidable_end(end.w, dot(parts.a1, parts.bc11))) {
       Search search{query, 1.0};
-      const PieceOutcome outcome = search_exact_contact(search, 0.0, 1.0, start, end, 0, &bernstein);
+      const PieceOutcome outcome = search_exact_contact(search, 0.0, 1.0, start, end, 0, &parts);
       if (outcome == PieceOutcome::Clear) return CcdResult{};
       if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
       undecided_from = search.toi;

@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "support/simd.hpp"
+
 namespace clothcd::ccd::detail {
 
 struct Interval {
@@ -22,14 +24,41 @@ struct Interval {
   double hi = 0.0;
 };
 
-/// Below a sum's rounded result by more than its rounding error.
-inline double sum_down(double x) {
-  return x - std::fabs(x) * 0x1p-51;
+// The operations below keep an interval's bounds in one two-lane vector, {lo, hi}: each lane computes exactly what the
+// formulas in their comments give (a product's four endpoint products are compared in another order than one by
+// one, which can only change the sign of a zero bound).
+namespace bounds {
+
+using simd::d2::Doubles;
+using simd::d2::Masks;
+
+[[gnu::always_inline]] inline Doubles of(const Interval& a) { return Doubles{a.lo, a.hi}; }
+[[gnu::always_inline]] inline Interval to_interval(Doubles v) { return {v[0], v[1]}; }
+
+/// {lo - error_lo, hi + error_hi}: the rounded bounds v moved outwards by error >= 0.
+[[gnu::always_inline]] inline Doubles outward(Doubles v, Doubles error) {
+  return v + simd::d2::as_doubles(simd::d2::as_bits(error) ^ Masks{INT64_MIN, 0});
 }
-/// Above a sum's rounded result by more than its rounding error.
-inline double sum_up(double x) {
-  return x + std::fabs(x) * 0x1p-51;
+
+/// Lanes that are non-zero and below 2^-511 in magnitude (a product with them may underflow).
+[[gnu::always_inline]] inline Masks tiny_nonzero(Doubles v) {
+  const Doubles magnitude = simd::d2::abs(v);
+  return simd::d2::less(magnitude, simd::d2::splat(0x1p-511)) & simd::d2::less(simd::d2::splat(0.0), magnitude);
 }
+
+/// A sum's or difference's rounded bounds moved out by 2^-51 of their magnitudes: {lo - |lo| 2^-51, hi + |hi| 2^-51}.
+[[gnu::always_inline]] inline Interval widened_sum(Doubles v) {
+  return to_interval(outward(v, simd::d2::abs(v) * simd::d2::splat(0x1p-51)));
+}
+
+/// A product's rounded bounds moved out by 2^-51 of their magnitudes, plus 2^-1022 when `tiny` has a lane set:
+/// {lo - (|lo| 2^-51 + u), hi + (|hi| 2^-51 + u)}.
+[[gnu::always_inline]] inline Interval widened_product(Doubles v, Masks tiny) {
+  const double underflow = simd::d2::any(tiny) ? 0x1p-1022 : 0.0;
+  return to_interval(outward(v, simd::d2::abs(v) * simd::d2::splat(0x1p-51) + simd::d2::splat(underflow)));
+}
+
+}  // namespace bounds
 
 inline Interval exact(double x) {
   return {x, x};
@@ -37,39 +66,30 @@ inline Interval exact(double x) {
 inline Interval hull(const Interval& a, const Interval& b) {
   return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
 }
-inline Interval operator+(const Interval& a, const Interval& b) {
-  return {sum_down(a.lo + b.lo), sum_up(a.hi + b.hi)};
+/// The rounded {a.lo + b.lo, a.hi + b.hi}, widened.
+[[gnu::always_inline]] inline Interval operator+(const Interval& a, const Interval& b) {
+  return bounds::widened_sum(bounds::of(a) + bounds::of(b));
 }
-inline Interval operator-(const Interval& a, const Interval& b) {
-  return {sum_down(a.lo - b.hi), sum_up(a.hi - b.lo)};
-}
-
-/// True when the double is non-zero and below 2^-511 in magnitude (a product with it may underflow): its magnitude's
-/// bit pattern minus one, compared unsigned with that of 2^-511 minus one (zero wraps to the largest value).
-inline bool tiny_nonzero(double x) {
-  constexpr std::uint64_t kMagnitude = 0x7fffffffffffffffull, kTiny = 0x2000000000000000ull;  // bits of 2^-511
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  return ((bits & kMagnitude) - 1) < kTiny - 1;
+/// The rounded {a.lo - b.hi, a.hi - b.lo}, widened.
+[[gnu::always_inline]] inline Interval operator-(const Interval& a, const Interval& b) {
+  return bounds::widened_sum(bounds::of(a) - simd::d2::swap(bounds::of(b)));
 }
 
-/// The rounded product bounds lo <= hi moved outwards by their rounding errors; `may_underflow`: an operand was tiny.
-inline Interval widened_product(double lo, double hi, bool may_underflow) {
-  const double underflow = may_underflow ? 0x1p-1022 : 0.0;
-  return {lo - (std::fabs(lo) * 0x1p-51 + underflow), hi + (std::fabs(hi) * 0x1p-51 + underflow)};
-}
-
-inline Interval operator*(const Interval& a, const Interval& b) {
-  const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
-  const bool tiny = tiny_nonzero(a.lo) | tiny_nonzero(a.hi) | tiny_nonzero(b.lo) | tiny_nonzero(b.hi);
-  return widened_product(std::min(std::min(p[0], p[1]), std::min(p[2], p[3])),
-                         std::max(std::max(p[0], p[1]), std::max(p[2], p[3])), tiny);
+/// The smallest and largest of the four rounded endpoint products, widened (with 2^-1022 when an endpoint is tiny).
+[[gnu::always_inline]] inline Interval operator*(const Interval& a, const Interval& b) {
+  using namespace simd::d2;
+  const Doubles bb = bounds::of(b);
+  const Doubles from_lo = splat(a.lo) * bb, from_hi = splat(a.hi) * bb;
+  const Doubles low = min(from_lo, from_hi), high = max(from_lo, from_hi);
+  const Doubles v{std::min(low[0], low[1]), std::max(high[0], high[1])};
+  return bounds::widened_product(v, bounds::tiny_nonzero(bounds::of(a)) | bounds::tiny_nonzero(bb));
 }
 
 /// x times c, for a double c in [2^-511, 2^511] (a time in the step, 1/2, 2, 3): the same enclosure as exact(c) * x
 /// with two products, and only x's endpoints can make them underflow.
-inline Interval scaled(const Interval& x, double c) {
-  return widened_product(x.lo * c, x.hi * c, tiny_nonzero(x.lo) | tiny_nonzero(x.hi));
+[[gnu::always_inline]] inline Interval scaled(const Interval& x, double c) {
+  const bounds::Doubles v = bounds::of(x);
+  return bounds::widened_product(v * simd::d2::splat(c), bounds::tiny_nonzero(v));
 }
 
 /// Sign certain under the enclosure: 1 or -1, else 0 (zero inside, or NaN bounds).

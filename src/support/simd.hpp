@@ -3,9 +3,9 @@
 // and compiled for every level of clothcd::SimdLevel; the caller picks the compiled version from simd_level().
 //
 // Types are the compiler's vector extension (GCC and Clang, any architecture): four or eight float or 32-bit integer
-// lanes, four double or 64-bit integer lanes. Arithmetic and comparisons are the built-in operators (a comparison gives an integer
+// lanes, two or four double or 64-bit integer lanes. Arithmetic and comparisons are the built-in operators (a comparison gives an integer
 // vector of lane masks, all ones or zero; the library is built without contraction, so products are never fused and
-// a kernel gives the same bits at every width). Each width's namespace (w4, w8, d4) names its types and adds what
+// a kernel gives the same bits at every width). Each width's namespace (d2, w4, w8, d4) names its types and adds what
 // the operators do not say: unaligned and partial loads and stores, broadcasts, the minimum and maximum of SSE (the
 // second operand where either is NaN), selects, square roots, transposes, lane masks as bits, dropping the bits past a
 // range's end, and widening a row of lane numbers to positions.
@@ -47,10 +47,90 @@ using I32x4 = std::int32_t __attribute__((vector_size(16)));
 using F32x8 = float __attribute__((vector_size(32)));
 /// Eight 32-bit integer lanes (also the lane masks of F32x8 comparisons; AVX).
 using I32x8 = std::int32_t __attribute__((vector_size(32)));
+/// Two double lanes (the baseline: SSE2 on x86-64, NEON on ARM, scalar code elsewhere).
+using F64x2 = double __attribute__((vector_size(16)));
+/// Two 64-bit integer lanes (the lane masks of F64x2 comparisons).
+using I64x2 = std::int64_t __attribute__((vector_size(16)));
 /// Four double lanes (AVX).
 using F64x4 = double __attribute__((vector_size(32)));
 /// Four 64-bit integer lanes (the lane masks of F64x4 comparisons; AVX).
 using I64x4 = std::int64_t __attribute__((vector_size(32)));
+
+// ---- two double lanes: the baseline (interval arithmetic keeps an interval's two bounds in one vector) ----
+namespace d2 {
+
+/// Double lanes.
+using Doubles = F64x2;
+/// 64-bit integer lanes, and the masks of comparisons.
+using Masks = I64x2;
+
+/// The bits of v as integer lanes.
+[[gnu::always_inline]] inline Masks as_bits(Doubles v) {
+  Masks m;
+  std::memcpy(&m, &v, sizeof m);
+  return m;
+}
+
+/// Integer lanes' bits as double lanes.
+[[gnu::always_inline]] inline Doubles as_doubles(Masks m) {
+  Doubles v;
+  std::memcpy(&v, &m, sizeof v);
+  return v;
+}
+
+/// x in both lanes.
+[[gnu::always_inline]] inline Doubles splat(double x) { return Doubles{x, x}; }
+
+/// The lanes exchanged.
+[[gnu::always_inline]] inline Doubles swap(Doubles v) { return Doubles{v[1], v[0]}; }
+
+/// Lane by lane `mask` ? a : b.
+[[gnu::always_inline]] inline Doubles select(Masks mask, Doubles a, Doubles b) {
+  return as_doubles((as_bits(a) & mask) | (as_bits(b) & ~mask));
+}
+
+/// Lane by lane a < b ? a : b (b when either is NaN), the minimum of SSE.
+[[gnu::always_inline]] inline Doubles min(Doubles a, Doubles b) {
+#if defined(CLOTHCD_SIMD_X86)
+  return _mm_min_pd(a, b);
+#else
+  return select(a < b, a, b);
+#endif
+}
+
+/// Lane by lane a > b ? a : b (b when either is NaN), the maximum of SSE.
+[[gnu::always_inline]] inline Doubles max(Doubles a, Doubles b) {
+#if defined(CLOTHCD_SIMD_X86)
+  return _mm_max_pd(a, b);
+#else
+  return select(a > b, a, b);
+#endif
+}
+
+/// Lane by lane a < b, as a mask.
+[[gnu::always_inline]] inline Masks less(Doubles a, Doubles b) {
+#if defined(CLOTHCD_SIMD_X86)
+  return as_bits(_mm_cmplt_pd(a, b));
+#else
+  return a < b;
+#endif
+}
+
+/// True when some lane of `mask` is true (all ones).
+[[gnu::always_inline]] inline bool any(Masks mask) {
+#if defined(CLOTHCD_SIMD_X86)
+  return _mm_movemask_pd(as_doubles(mask)) != 0;
+#else
+  return (mask[0] | mask[1]) != 0;
+#endif
+}
+
+/// Lane by lane |v| (the sign bit cleared).
+[[gnu::always_inline]] inline Doubles abs(Doubles v) {
+  return as_doubles(as_bits(v) & Masks{0x7fffffffffffffffll, 0x7fffffffffffffffll});
+}
+
+}  // namespace d2
 
 // ---- four float or int lanes: the baseline (SSE2 on x86-64, NEON on ARM, scalar code elsewhere) ----
 namespace w4 {
