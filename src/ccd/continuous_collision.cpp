@@ -258,16 +258,52 @@ double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4
   return t0;
 }
 
-// known_parts: det_parts(e0.x, e1.x) when the caller has them already, else nullptr.
-PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PieceEnd& e0, const PieceEnd& e1,
-                                  int depth, const DetParts* known_parts = nullptr) {
+// The boxes of W over a piece: each difference point's hull over the piece's two ends.
+PointSet piece_boxes(const PieceEnd& e0, const PieceEnd& e1) {
   PointSet boxes;
   boxes.count = e0.w.count;
   for (int m = 0; m < e0.w.count; ++m) boxes.w[m] = hull(e0.w.w[m], e1.w.w[m]);
-  if (boxes_exclude_origin(boxes, 0.0)) return PieceOutcome::Clear;
+  return boxes;
+}
+
+// The two halves of a piece split at `mid`: the middle end and each half's boxes, and whether they exclude the origin.
+struct Halves {
+  PieceEnd middle;
+  PointSet left_boxes, right_boxes;
+  bool left_clear = false, right_clear = false;
+};
+
+void split_piece(const CcdQuery& query, double mid, const PieceEnd& e0, const PieceEnd& e1, Halves& halves) {
+  piece_end(query, mid, halves.middle);
+  halves.left_boxes = piece_boxes(e0, halves.middle);
+  halves.right_boxes = piece_boxes(halves.middle, e1);
+  halves.left_clear = boxes_exclude_origin(halves.left_boxes, 0.0);
+  halves.right_clear = boxes_exclude_origin(halves.right_boxes, 0.0);
+}
+
+// Decides the piece [t0, t1] with ends e0 and e1, whose W boxes `boxes` do not exclude the origin. known_parts:
+// det_parts(e0.x, e1.x) when the caller has them already, else nullptr.
+PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PieceEnd& e0, const PieceEnd& e1,
+                                  const PointSet& boxes, int depth, const DetParts* known_parts = nullptr) {
+  const double mid = 0.5 * (t0 + t1);
+  const bool can_split = depth < kMaxDepth && mid > t0 && mid < t1;
+  // When both halves' boxes exclude the origin there is no contact in the piece, so the tests below could not find a
+  // hit: they would clear the piece or split it into these halves, which clear at once. Either way the piece is clear,
+  // without their cost. The whole step's own tests almost never decide, so there the halves come first; deeper, after
+  // the Bernstein test, which decides more pieces and needs no middle positions.
+  Halves halves;
+  const bool halves_first = depth == 0;
+  if (can_split && halves_first) {
+    split_piece(search.query, mid, e0, e1, halves);
+    if (halves.left_clear && halves.right_clear) return PieceOutcome::Clear;
+  }
   const std::array<Interval, 4> bernstein =
       known_parts != nullptr ? bernstein_of_d(*known_parts) : bernstein_of_d(det_parts(e0.x, e1.x));
   if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
+  if (can_split && !halves_first) {
+    split_piece(search.query, mid, e0, e1, halves);
+    if (halves.left_clear && halves.right_clear) return PieceOutcome::Clear;
+  }
   const int sign_start = certain_sign(bernstein[0]);
   const int sign_end = certain_sign(bernstein[3]);
   const PieceOutcome verdict = classify_projections(boxes, sign_start != 0 && sign_end == -sign_start);
@@ -276,17 +312,18 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Pi
     search.toi = first_root_lower_bound(t0, t1, bernstein);
     return PieceOutcome::Hit;
   }
-  const double mid = 0.5 * (t0 + t1);
-  if (depth >= kMaxDepth || !(mid > t0 && mid < t1)) {
+  if (!can_split) {
     // Every earlier piece was cleared, and a contact needs D = 0: none before D's first possible root in this piece.
     search.toi = first_root_lower_bound(t0, t1, bernstein);
     return PieceOutcome::Undecided;
   }
-  PieceEnd em;
-  piece_end(search.query, mid, em);
-  const PieceOutcome left = search_exact_contact(search, t0, mid, e0, em, depth + 1);
-  if (left != PieceOutcome::Clear) return left;
-  return search_exact_contact(search, mid, t1, em, e1, depth + 1);
+  if (!halves.left_clear) {
+    const PieceOutcome left =
+        search_exact_contact(search, t0, mid, e0, halves.middle, halves.left_boxes, depth + 1);
+    if (left != PieceOutcome::Clear) return left;
+  }
+  if (halves.right_clear) return PieceOutcome::Clear;
+  return search_exact_contact(search, mid, t1, halves.middle, e1, halves.right_boxes, depth + 1);
 }
 
 exact::RationalPoints rational_points(const CcdQuery& query) {
@@ -384,7 +421,10 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
     const DetParts parts = det_parts(start.x, end.x);
     if (!undecidable_end(start.w, dot(parts.a0, parts.bc00)) && !undecidable_end(end.w, dot(parts.a1, parts.bc11))) {
       Search search{query, 1.0};
-      const PieceOutcome outcome = search_exact_contact(search, 0.0, 1.0, start, end, 0, &parts);
+      const PointSet boxes = piece_boxes(start, end);
+      const PieceOutcome outcome = boxes_exclude_origin(boxes, 0.0)
+                                       ? PieceOutcome::Clear
+                                       : search_exact_contact(search, 0.0, 1.0, start, end, boxes, 0, &parts);
       if (outcome == PieceOutcome::Clear) return CcdResult{};
       if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
       undecided_from = search.toi;
