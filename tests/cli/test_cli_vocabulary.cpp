@@ -99,7 +99,7 @@ TEST_CASE("a wrong choice lists the same names --help shows", "[cli][errors]") {
   }
 }
 
-TEST_CASE("the shared options have one spelling; the old ones stay hidden", "[cli]") {
+TEST_CASE("the shared options have one spelling, and the old ones stay hidden", "[cli]") {
   for (const char* command : {"detect", "ccd", "simulate"}) {
     INFO(command);
     const std::string help = run_cli(std::string(command) + " --help").output;

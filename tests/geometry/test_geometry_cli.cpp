@@ -42,7 +42,7 @@ TEST_CASE("clothcd obb prints the box, its volume and tau", "[geometry][cli]") {
   CHECK(test::run_cli("obb '" + (dir / "box.obj").string() + "' --method nonsense").exit_code != 0);
 }
 
-TEST_CASE("obb and simplify say how many zero-area faces they dropped; JSON paths are escaped", "[geometry][cli]") {
+TEST_CASE("obb and simplify say how many zero-area faces they dropped, and JSON paths are escaped", "[geometry][cli]") {
   const test::TempDir dir;
   // A tetrahedron plus one face with a repeated vertex index, in a file whose name needs JSON escapes.
   const std::string name = "te\"tra\\x.off";
@@ -50,8 +50,8 @@ TEST_CASE("obb and simplify say how many zero-area faces they dropped; JSON path
   const std::string path = "'" + (dir / name).string() + "'";
   const auto json = test::run_cli("obb " + path + " --json");
   REQUIRE(json.exit_code == 0);
-  CHECK(json.output.find("te\\\"tra\\\\x.off\", ") != std::string::npos);
-  CHECK(json.output.find("\"degenerate_faces_dropped\": 1}") != std::string::npos);
+  CHECK(json.output.find("te\\\"tra\\\\x.off\",\n") != std::string::npos);
+  CHECK(json.output.find("\"degenerate_faces_dropped\": 1\n") != std::string::npos);
   CHECK(test::run_cli("obb " + path).output.find("dropped:      1 zero-area faces") != std::string::npos);
   const auto simplified = test::run_cli("simplify " + path + " '" + (dir / "out.obj").string() + "' --ratio 0.5");
   CHECK(simplified.exit_code == 0);

@@ -121,7 +121,7 @@ TEST_CASE("On a rotated box, covariance and tight find the box itself", "[geomet
   }
 }
 
-TEST_CASE("Every OBB method bounds real models; tight is the smallest", "[geometry][obb][models]") {
+TEST_CASE("Every OBB method bounds real models, and tight is the smallest", "[geometry][obb][models]") {
   for (const char* name : {"dinosaur", "cat"}) {
     CAPTURE(name);
     const TriangleMesh mesh = test::load_model(name);

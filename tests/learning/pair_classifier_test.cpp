@@ -129,7 +129,7 @@ TEST_CASE("decisions follow the operating point and non-finite features are kept
   CHECK(OperatingPoint{0.1, 0.7}.keep_from == 0.7);  // left out: the decision threshold
 }
 
-TEST_CASE("keep_from keeps no selection-split pair the filters remove; older cards read it as the threshold",
+TEST_CASE("keep_from keeps no selection-split pair the filters remove, and older cards read it as the threshold",
           "[learning][runtime]") {
   const test::TrainedModel& model = test::trained_model();
   const PairClassifier classifier = PairClassifier::load(model.directory);

@@ -77,7 +77,7 @@ TEST_CASE("the nearer triangle wins the depth test", "[render]") {
   CHECK(image.rgb[centre + 2] == 0);
 }
 
-TEST_CASE("a contact sheet lays images on a grid; bad input throws", "[render]") {
+TEST_CASE("a contact sheet lays images on a grid, and bad input throws", "[render]") {
   const std::vector<Image> images(5, Image(30, 20, 0, 0, 0));
   const Image sheet = contact_sheet(images, 2, 4);
   CHECK(sheet.width == 2 * 30 + 3 * 4);
