@@ -53,14 +53,38 @@ geometry::Sphere merge_spheres(const geometry::Sphere& a, const geometry::Sphere
   return s;
 }
 
-// A triangle during the build: its box's centre (times two), its box and its index, kept in tree order so that the
-// splits read memory in sequence.
+// A triangle during the build, in single precision (the splits only choose where to cut; the node volumes are
+// refitted from the double-precision boxes): its box's centre (times two), its box and its index, kept in tree order
+// so that the splits read memory in sequence. Half the size of double-precision items, so each level of the build
+// moves half the memory.
 struct BuildItem {
   // Left uninitialised (not zeroed by std::vector): the build's parallel fill then touches the fresh pages first.
   BuildItem() {}  // NOLINT(modernize-use-equals-default): `= default` would let value-initialisation zero it
-  Eigen::Vector3d centroid;
-  FlatBox box;
+  float centroid[3];
+  float lo[3];
+  float hi[3];
   int face;
+};
+
+// A box of build items (single precision).
+struct ItemBox {
+  float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                 std::numeric_limits<float>::infinity()};
+  float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                 -std::numeric_limits<float>::infinity()};
+
+  void expand(const float* other_lo, const float* other_hi) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = other_lo[k] < lo[k] ? other_lo[k] : lo[k];
+      hi[k] = other_hi[k] > hi[k] ? other_hi[k] : hi[k];
+    }
+  }
+  void expand(const ItemBox& o) { expand(o.lo, o.hi); }
+  // Half the surface area (in double: the costs compare sums of many areas).
+  [[nodiscard]] double half_area() const {
+    const double dx = double{hi[0]} - lo[0], dy = double{hi[1]} - lo[1], dz = double{hi[2]} - lo[2];
+    return dx * dy + dy * dz + dz * dx;
+  }
 };
 
 struct BuildContext {
@@ -71,39 +95,36 @@ struct BuildContext {
 constexpr int kSahBins = 16;
 
 // The bin of centroid coordinate x for bins of width 1 / scale from lo: 0 .. kSahBins - 1 (0 for NaN).
-int bin_of(double x, double lo, double scale) {
-  const double b = (x - lo) * scale;
-  return b >= 1.0 ? std::min(kSahBins - 1, static_cast<int>(std::min(b, static_cast<double>(kSahBins)))) : 0;
+int bin_of(float x, float lo, float scale) {
+  const float b = (x - lo) * scale;
+  return b >= 1.0f ? std::min(kSahBins - 1, static_cast<int>(std::min(b, static_cast<float>(kSahBins)))) : 0;
 }
 
-// Where to split order[begin, end): the binned surface-area heuristic over the centroid bounds (the split that
+// Where to split items[begin, end): the binned surface-area heuristic over the centroid bounds (the split that
 // minimises area(left) * count(left) + area(right) * count(right)), falling back to the median on the longest axis
 // when every centroid falls in one bin. Reorders the range so that [begin, middle) is the left child; returns middle.
 int split_range(BuildContext& context, int begin, int end) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
+  ItemBox bounds;
   const auto first = context.items.begin() + begin, last = context.items.begin() + end;
-  for (auto item = first; item != last; ++item) {
-    lo = lo.cwiseMin(item->centroid);
-    hi = hi.cwiseMax(item->centroid);
-  }
+  for (auto item = first; item != last; ++item) bounds.expand(item->centroid, item->centroid);
+  const float* lo = bounds.lo;
+  const float* hi = bounds.hi;
   // Bins need a finite, non-zero extent and scale (no NaN, infinite or subnormal extent reaches the bin index).
-  std::array<double, 3> scale{};
+  std::array<float, 3> scale{};
   std::array<bool, 3> binned{};
   for (int axis = 0; axis < 3; ++axis) {
-    const double extent = hi[axis] - lo[axis];
+    const float extent = hi[axis] - lo[axis];
     scale[axis] = kSahBins / extent;
-    binned[axis] = extent > 0.0 && std::isfinite(extent) && std::isfinite(scale[axis]);
+    binned[axis] = extent > 0.0f && std::isfinite(extent) && std::isfinite(scale[axis]);
   }
   // One pass over the triangles fills the bins of all three axes.
-  std::array<std::array<FlatBox, kSahBins>, 3> bin_box;
+  std::array<std::array<ItemBox, kSahBins>, 3> bin_box;
   std::array<std::array<int, kSahBins>, 3> bin_count{};
-  for (auto& boxes : bin_box) boxes.fill(empty_flat_box());
   for (auto item = first; item != last; ++item) {
     for (int axis = 0; axis < 3; ++axis) {
       if (!binned[axis]) continue;
       const int bin = bin_of(item->centroid[axis], lo[axis], scale[axis]);
-      bin_box[axis][bin].expand(item->box);
+      bin_box[axis][bin].expand(item->lo, item->hi);
       ++bin_count[axis][bin];
     }
   }
@@ -112,20 +133,20 @@ int split_range(BuildContext& context, int begin, int end) {
   for (int axis = 0; axis < 3; ++axis) {
     if (!binned[axis]) continue;
     std::array<double, kSahBins> right_cost{};
-    FlatBox right = empty_flat_box();
+    ItemBox right;
     int right_count = 0;
     for (int b = kSahBins - 1; b > 0; --b) {
       right.expand(bin_box[axis][b]);
       right_count += bin_count[axis][b];
-      right_cost[b] = right_count > 0 ? box_area(right) * right_count : 0.0;
+      right_cost[b] = right_count > 0 ? right.half_area() * right_count : 0.0;
     }
-    FlatBox left = empty_flat_box();
+    ItemBox left;
     int left_count = 0;
     for (int b = 0; b + 1 < kSahBins; ++b) {
       left.expand(bin_box[axis][b]);
       left_count += bin_count[axis][b];
       if (left_count == 0 || left_count == end - begin) continue;
-      const double cost = box_area(left) * left_count + right_cost[b + 1];
+      const double cost = left.half_area() * left_count + right_cost[b + 1];
       if (cost < best_cost) {
         best_cost = cost;
         best_axis = axis;
@@ -135,7 +156,9 @@ int split_range(BuildContext& context, int begin, int end) {
   }
   if (best_axis < 0) {
     int axis = 0;
-    (hi - lo).maxCoeff(&axis);
+    for (int k = 1; k < 3; ++k) {
+      if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    }
     const int middle = begin + (end - begin) / 2;
     std::nth_element(first, context.items.begin() + middle, last,
                      [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
@@ -205,6 +228,14 @@ void group_by_owner(const std::vector<int>& owner, const std::vector<int>& posit
   }
 }
 
+// The swept box of face f: the union of its vertices' boxes.
+FlatBox face_box(const BodyTopology& topology, const SweptBoxes& boxes, int f) {
+  FlatBox b = boxes.vertices[topology.faces(f, 0)];
+  b.expand(boxes.vertices[topology.faces(f, 1)]);
+  b.expand(boxes.vertices[topology.faces(f, 2)]);
+  return b;
+}
+
 }  // namespace
 
 Bvh::Bvh(const BvhSettings& settings) : settings_(settings) {
@@ -220,11 +251,12 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
   const auto fill_items = [&](int begin, int end) {
     for (int f = begin; f < end; ++f) {
       BuildItem& item = items[static_cast<std::size_t>(f)];
-      FlatBox& b = item.box;
-      b = boxes.vertices[topology.faces(f, 0)];
-      b.expand(boxes.vertices[topology.faces(f, 1)]);
-      b.expand(boxes.vertices[topology.faces(f, 2)]);
-      item.centroid = Eigen::Vector3d(b.min[0] + b.max[0], b.min[1] + b.max[1], b.min[2] + b.max[2]);
+      const FlatBox b = face_box(topology, boxes, f);
+      for (int k = 0; k < 3; ++k) {
+        item.centroid[k] = static_cast<float>(b.min[k] + b.max[k]);
+        item.lo[k] = static_cast<float>(b.min[k]);
+        item.hi[k] = static_cast<float>(b.max[k]);
+      }
       item.face = f;
     }
   };
@@ -235,8 +267,13 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
     fill_items(0, face_count);
   }
   for (int f = 0; f < face_count; ++f) {
-    if (!items[static_cast<std::size_t>(f)].centroid.allFinite()) {
-      throw std::invalid_argument("bvh: face " + std::to_string(f) + " has a NaN or infinite box");
+    const float* c = items[static_cast<std::size_t>(f)].centroid;
+    if (std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2])) continue;
+    // Also beyond the float range: the double-precision centre decides.
+    const FlatBox b = face_box(topology, boxes, f);
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(b.min[k] + b.max[k]))
+        throw std::invalid_argument("bvh: face " + std::to_string(f) + " has a NaN or infinite box");
     }
   }
   nodes_.clear();
