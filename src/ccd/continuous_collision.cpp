@@ -4,19 +4,20 @@
 // or W = {a_i - b_j} (edge-edge), all linear in t (see exact_reference.cpp for why this is equivalent). The time range
 // is subdivided (left half first, so the first hit is the earliest); on each piece [t0, t1], with outward-rounded
 // interval arithmetic:
-//   - cleared when some coordinate of every W box has one strict sign (the origin is outside the boxes' hull), or
-//     when the Bernstein coefficients of D(t) = det(x1 - x0, x2 - x0, x3 - x0) on the piece have one strict sign
-//     (no coplanarity), or when in some axis projection every triangle of W has 2D cross products of both strict signs
-//     (the origin is outside every triangle, so outside conv W);
+//   - cleared when some coordinate of every W box has one strict sign (the origin is outside the boxes' hull), or,
+//     above the maximum depth, when that holds for both halves of the piece (checked before the tests below, which
+//     could then only clear it), or when the Bernstein coefficients of D(t) = det(x1 - x0, x2 - x0, x3 - x0) on the
+//     piece have one strict sign (no coplanarity), or when in some axis projection every triangle of W has 2D cross
+//     products of both strict signs (the origin is outside every triangle, so outside conv W);
 //   - proven hit when D certainly changes sign over the piece (a coplanar instant exists) and, in some projection,
 //     one triangle of W has three 2D cross products of the same strict sign (a non-degenerate projected triangle with
 //     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
 //     then tightened to the first sub-piece where D is not certainly non-zero.
 // A piece left undecided at the maximum depth makes the query a conservative hit (toi: where D may first vanish in
-// the piece), or with
-// CcdSettings::decide_exactly hands it to the exact expansion tier (expansion_collision.cpp), and what that cannot
-// decide to the exact rational reference, so no collision is ever missed; so does, before any subdivision, a possible
-// exact touch at t = 0 or 1, which no piece ending there could decide (a conservative hit at toi 0). With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
+// the piece), or with CcdSettings::decide_exactly hands it to the exact expansion tier (expansion_collision.cpp), and
+// what that cannot decide to the exact rational reference, so no collision is ever missed; so does, before any
+// subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could decide (a conservative hit at
+// toi 0). With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
 // thickness_contact.cpp decides (no rational arithmetic).
 #include <algorithm>
 #include <cmath>
