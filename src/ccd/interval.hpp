@@ -11,9 +11,7 @@
 // into subnormal numbers, whose products cost about 30x a normal product on Intel CPUs (microcode assists); with the
 // public handcrafted CCD queries that tripled the mean time per query on an Intel Xeon.
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include "support/simd.hpp"
 

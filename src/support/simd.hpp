@@ -3,9 +3,9 @@
 // and compiled for every level of clothcd::SimdLevel; the caller picks the compiled version from simd_level().
 //
 // Types are the compiler's vector extension (GCC and Clang, any architecture): four or eight float or 32-bit integer
-// lanes, two or four double or 64-bit integer lanes. Arithmetic and comparisons are the built-in operators (a comparison gives an integer
-// vector of lane masks, all ones or zero; the library is built without contraction, so products are never fused and
-// a kernel gives the same bits at every width). Each width's namespace (d2, w4, w8, d4) names its types and adds what
+// lanes, two or four double or 64-bit integer lanes. Arithmetic and comparisons are the built-in operators (a
+// comparison gives an integer vector of lane masks, all ones or zero; the library is built without contraction, so
+// products are never fused and a kernel gives the same bits at every width). Each width's namespace (d2, w4, w8, d4) names its types and adds what
 // the operators do not say: unaligned and partial loads and stores, broadcasts, the minimum and maximum of SSE (the
 // second operand where either is NaN), selects, square roots, transposes, lane masks as bits, dropping the bits past a
 // range's end, and widening a row of lane numbers to positions.
