@@ -78,14 +78,15 @@ class CollisionDetector:
 
     Settings (keywords): hierarchy ("sphere-root-aabb", "aabb", "aabb-obb"), culling ("filters", "none",
     "nonpenetration", "projection", "network"), thickness, self_collision, model_path (network culling; default: the
-    shipped model), max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly; see the C++
+    shipped model), max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly (True: every
+    reported collision is proven; False: the approximate mode's conservative hits); see the C++
     clothcd::DetectorSettings. One detector must not be used from two threads at once; separate detectors may.
     """
 
     def __init__(self, faces, vertex_count: int, *, hierarchy: str = "sphere-root-aabb", culling: str = "filters",
                  thickness: float = 0.0, self_collision: bool = True, model_path: str = "",
                  max_leaf_faces: int = 32, parallel: bool = True, reuse_unchanged: bool = True,
-                 projection_normals: bool = True, decide_exactly: bool = False) -> None:
+                 projection_normals: bool = True, decide_exactly: bool = True) -> None:
         if culling == "network" and not model_path:
             model_path = default_model_dir()
         self._detector = _clothcd._CollisionDetector(
@@ -128,10 +129,11 @@ class CollisionDetector:
         return self._detector.stats()
 
 
-def ccd(queries, kind: str = "vf", *, filter: str = "combined", thickness: float = 0.0, exact: bool = False):
+def ccd(queries, kind: str = "vf", *, filter: str = "combined", thickness: float = 0.0, exact: bool = True):
     """Continuous collision detection on (N, 8, 3) queries (the four points at t=0, then at t=1; vertex-face: the
     vertex then the triangle, edge-edge: edge a then edge b). Returns (hit (N,) bool, toi (N,), culled (N,) bool):
-    `culled` pairs were removed by `filter` ("none", "nonpenetration", "projection", "combined")."""
+    `culled` pairs were removed by `filter` ("none", "nonpenetration", "projection", "combined"). exact=False is the
+    approximate mode: queries interval arithmetic leaves undecided count as hits (toi a lower bound)."""
     hit, toi, culled = _clothcd._ccd(np.ascontiguousarray(queries, dtype=np.float64), kind, filter, thickness, exact)
     return hit.astype(bool), toi, culled.astype(bool)
 

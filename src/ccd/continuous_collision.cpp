@@ -46,7 +46,18 @@ using detail::Interval;
 // 12% above 8). Reporting the undecided queries as conservative hits instead, depths 2 / 4 / 6 / 8 leave 42 / 40 / 40 /
 // 39 false positives (VF) and 72 / 62 / 55 / 53 (EE) on those queries, the deeper ones 10-25% slower than depth 4.
 constexpr int kMaxDepth = 4;
-constexpr int kToiBisections = 24;      // time-of-impact lower bound tightened to about 6e-8 of the step
+// Deciding exactly: pieces go on splitting below kMaxDepth, down to 2^-kMaxExactDepth of the step, while the query has
+// examined fewer than kDeepPieceBudget pieces below kMaxDepth. A piece that misses or touches by far more than a
+// rounding error is decided there at a few interval tests per level, instead of by the exact tiers (about 100k
+// instructions a query); what is left (an exact touch, a miss by a rounding error, coplanar motion) exhausts the budget
+// quickly and goes to them. (Rod-twist: 1,711 queries of 19k reach the exact tiers at depth 4, 183 with this budget;
+// budgets of 16 and 24 decide a few more there but cost more on cloth-funnel's exact touches.)
+constexpr int kMaxExactDepth = 40;
+constexpr int kDeepPieceBudget = 8;
+// A hit's time of impact is a lower bound proven within kToiTolerance of the earliest contact (else the exact tiers
+// give it); a conservative hit's is tightened by at most kToiBisections halvings of its piece.
+constexpr double kToiTolerance = 0x1p-21;
+constexpr int kToiBisections = 24;
 // Beyond this magnitude intermediate products could overflow; such queries go straight to the exact reference.
 constexpr double kMaxFastCoordinate = 0x1p100;
 
@@ -230,24 +241,49 @@ void piece_end(const CcdQuery& query, double t, PieceEnd& end) {
 
 struct Search {
   const CcdQuery& query;
+  int max_depth = kMaxDepth;  // pieces at this depth are not split
+  int deep_pieces_left = 0;   // pieces below kMaxDepth this query may still examine
   double toi = 1.0;
 };
 
-// Lower bound of the first root of D in [t0, t1]: the start of the first sub-piece where D is not certainly non-zero.
-// The sub-pieces' Bernstein coefficients come from the piece's by de Casteljau halving in interval arithmetic (a
-// positive combination, so the enclosures stay rigorous), without recomputing positions. bernstein_of_d's middle
-// coefficients carry the binomial factor 3, so the ends are tripled: the four are 3 times the Bernstein coefficients.
-double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4>& of_piece) {
+// Three times D's Bernstein coefficients on a piece (bernstein_of_d's middle coefficients carry the binomial factor 3,
+// so its ends are tripled): signs and sign changes are those of the coefficients.
+using TripledBernstein = std::array<Interval, 4>;
+
+TripledBernstein tripled(const std::array<Interval, 4>& of_piece) {
+  return {detail::scaled(of_piece[0], 3.0), of_piece[1], of_piece[2], detail::scaled(of_piece[3], 3.0)};
+}
+
+// The coefficients of the piece's two halves by de Casteljau halving in interval arithmetic (a positive combination,
+// so the enclosures stay rigorous), without recomputing positions.
+void halve(const TripledBernstein& b, TripledBernstein& left, TripledBernstein& right) {
   using detail::scaled;
-  std::array<Interval, 4> b{scaled(of_piece[0], 3.0), of_piece[1], of_piece[2], scaled(of_piece[3], 3.0)};
+  const Interval b01 = scaled(b[0] + b[1], 0.5), b12 = scaled(b[1] + b[2], 0.5), b23 = scaled(b[2] + b[3], 0.5);
+  const Interval b012 = scaled(b01 + b12, 0.5), b123 = scaled(b12 + b23, 0.5);
+  const Interval b0123 = scaled(b012 + b123, 0.5);
+  left = {b[0], b01, b012, b0123};
+  right = {b0123, b123, b23, b[3]};
+}
+
+// Lower bound of the first root of D in [t0, t1]: the start of the first sub-piece where D is not certainly non-zero.
+// `tight` when the bound is proven within kToiTolerance of the first root: D has certain opposite signs at the ends
+// of the final sub-piece [lo, t1] with t1 - lo <= kToiTolerance (and none of its roots lies before lo).
+struct RootBound {
+  double lo = 0.0;
+  bool tight = false;
+};
+
+RootBound first_root_lower_bound(double t0, double t1, TripledBernstein b) {
+  const auto brackets_root = [&b] {
+    const int s = certain_sign(b[0]);
+    return s != 0 && certain_sign(b[3]) == -s;
+  };
   for (int i = 0; i < kToiBisections; ++i) {
+    if (t1 - t0 <= kToiTolerance && brackets_root()) return {t0, true};
     const double mid = 0.5 * (t0 + t1);
     if (!(mid > t0 && mid < t1)) break;
-    const Interval b01 = scaled(b[0] + b[1], 0.5), b12 = scaled(b[1] + b[2], 0.5), b23 = scaled(b[2] + b[3], 0.5);
-    const Interval b012 = scaled(b01 + b12, 0.5), b123 = scaled(b12 + b23, 0.5);
-    const Interval b0123 = scaled(b012 + b123, 0.5);
-    const std::array<Interval, 4> left{b[0], b01, b012, b0123};
-    const std::array<Interval, 4> right{b0123, b123, b23, b[3]};
+    TripledBernstein left, right;
+    halve(b, left, right);
     if (common_strict_sign(left) != 0) {
       t0 = mid;
       b = right;
@@ -256,7 +292,7 @@ double first_root_lower_bound(double t0, double t1, const std::array<Interval, 4
       b = left;
     }
   }
-  return t0;
+  return {t0, t1 - t0 <= kToiTolerance && brackets_root()};
 }
 
 // The boxes of W over a piece: each difference point's hull over the piece's two ends.
@@ -282,12 +318,14 @@ void split_piece(const CcdQuery& query, double mid, const PieceEnd& e0, const Pi
   halves.right_clear = boxes_exclude_origin(halves.right_boxes, 0.0);
 }
 
-// Decides the piece [t0, t1] with ends e0 and e1, whose W boxes `boxes` do not exclude the origin. known_parts:
-// det_parts(e0.x, e1.x) when the caller has them already, else nullptr.
+// Decides the piece [t0, t1] with ends e0 and e1, whose W boxes `boxes` do not exclude the origin and on which D has
+// the coefficients `bernstein` (computed from the positions on the whole step, by halving the parent's below it).
 PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PieceEnd& e0, const PieceEnd& e1,
-                                  const PointSet& boxes, int depth, const DetParts* known_parts = nullptr) {
+                                  const PointSet& boxes, int depth, const TripledBernstein& bernstein) {
   const double mid = 0.5 * (t0 + t1);
-  const bool can_split = depth < kMaxDepth && mid > t0 && mid < t1;
+  if (depth > kMaxDepth && common_strict_sign(bernstein) == 0 && --search.deep_pieces_left < 0)
+    return PieceOutcome::Undecided;
+  const bool can_split = depth < search.max_depth && mid > t0 && mid < t1;
   // When both halves' boxes exclude the origin there is no contact in the piece, so the tests below could not find a
   // hit: they would clear the piece or split it into these halves, which clear at once. Either way the piece is clear,
   // without their cost. The whole step's own tests almost never decide, so there the halves come first; deeper, after
@@ -298,8 +336,6 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Pi
     split_piece(search.query, mid, e0, e1, halves);
     if (halves.left_clear && halves.right_clear) return PieceOutcome::Clear;
   }
-  const std::array<Interval, 4> bernstein =
-      known_parts != nullptr ? bernstein_of_d(*known_parts) : bernstein_of_d(det_parts(e0.x, e1.x));
   if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
   if (can_split && !halves_first) {
     split_piece(search.query, mid, e0, e1, halves);
@@ -307,24 +343,32 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Pi
   }
   const int sign_start = certain_sign(bernstein[0]);
   const int sign_end = certain_sign(bernstein[3]);
-  const PieceOutcome verdict = classify_projections(boxes, sign_start != 0 && sign_end == -sign_start);
+  // Above kMaxDepth the projection tests rarely decide what the halves would not, so a piece that can split only splits
+  // (its halves cover it, earliest first): rod-twist's exact stage takes 20% fewer instructions.
+  const PieceOutcome verdict = depth < kMaxDepth && can_split
+                                   ? PieceOutcome::Undecided
+                                   : classify_projections(boxes, sign_start != 0 && sign_end == -sign_start);
   if (verdict == PieceOutcome::Clear) return PieceOutcome::Clear;
   if (verdict == PieceOutcome::Hit) {
-    search.toi = first_root_lower_bound(t0, t1, bernstein);
-    return PieceOutcome::Hit;
+    // Every earlier piece was cleared, and every root of D in this one is a contact.
+    const RootBound bound = first_root_lower_bound(t0, t1, bernstein);
+    search.toi = bound.lo;
+    return bound.tight ? PieceOutcome::Hit : PieceOutcome::Undecided;
   }
   if (!can_split) {
     // Every earlier piece was cleared, and a contact needs D = 0: none before D's first possible root in this piece.
-    search.toi = first_root_lower_bound(t0, t1, bernstein);
+    search.toi = first_root_lower_bound(t0, t1, bernstein).lo;
     return PieceOutcome::Undecided;
   }
+  TripledBernstein left_bernstein, right_bernstein;
+  halve(bernstein, left_bernstein, right_bernstein);
   if (!halves.left_clear) {
     const PieceOutcome left =
-        search_exact_contact(search, t0, mid, e0, halves.middle, halves.left_boxes, depth + 1);
+        search_exact_contact(search, t0, mid, e0, halves.middle, halves.left_boxes, depth + 1, left_bernstein);
     if (left != PieceOutcome::Clear) return left;
   }
   if (halves.right_clear) return PieceOutcome::Clear;
-  return search_exact_contact(search, mid, t1, halves.middle, e1, halves.right_boxes, depth + 1);
+  return search_exact_contact(search, mid, t1, halves.middle, e1, halves.right_boxes, depth + 1, right_bernstein);
 }
 
 exact::RationalPoints rational_points(const CcdQuery& query) {
@@ -421,11 +465,11 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
     // D at t = 0 and 1 from the whole step's parts, which the first piece reuses.
     const DetParts parts = det_parts(start.x, end.x);
     if (!undecidable_end(start.w, dot(parts.a0, parts.bc00)) && !undecidable_end(end.w, dot(parts.a1, parts.bc11))) {
-      Search search{query, 1.0};
+      Search search{query, decide_exactly ? kMaxExactDepth : kMaxDepth, kDeepPieceBudget, 1.0};
       const PointSet boxes = piece_boxes(start, end);
       const PieceOutcome outcome = boxes_exclude_origin(boxes, 0.0)
                                        ? PieceOutcome::Clear
-                                       : search_exact_contact(search, 0.0, 1.0, start, end, boxes, 0, &parts);
+                                       : search_exact_contact(search, 0.0, 1.0, start, end, boxes, 0, tripled(bernstein_of_d(parts)));
       if (outcome == PieceOutcome::Clear) return CcdResult{};
       if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
       undecided_from = search.toi;
@@ -434,8 +478,8 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
   }
   if (const std::optional<exact::ExactAnswer> answer = detail::expansion_collision(query))
     return answer->hit ? make_hit(query, answer->toi, CcdState::Hit) : CcdResult{};
-  const exact::ExactAnswer answer = exact::exact_collision(query.kind, rational_points(query));
-  CcdResult result = answer.hit ? make_hit(query, answer.toi, CcdState::Hit) : CcdResult{};
+  const exact::ContactTimeBounds contact = exact::exact_contact_time(query.kind, rational_points(query));
+  CcdResult result = contact.hit ? make_hit(query, contact.lo, CcdState::Hit) : CcdResult{};
   result.exact_fallback = true;
   return result;
 }

@@ -266,4 +266,8 @@ void isolate_from(AlgebraicPoint& point, const std::vector<PreparedPolynomial>& 
   }
 }
 
+void narrow(AlgebraicPoint& point, const mpq_class& width) {
+  while (!point.is_rational && point.hi - point.lo > width) bisect(point);
+}
+
 }  // namespace clothcd::ccd::exact

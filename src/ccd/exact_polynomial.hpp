@@ -58,4 +58,7 @@ struct PreparedPolynomial {
 /// itself (or until the point turns out rational): then lo and hi lie in the open pieces next to the point.
 void isolate_from(AlgebraicPoint& point, const std::vector<PreparedPolynomial>& others);
 
+/// Shrinks the point's isolating interval by exact bisection until hi - lo <= width (or the point turns out rational).
+void narrow(AlgebraicPoint& point, const mpq_class& width);
+
 }  // namespace clothcd::ccd::exact

@@ -13,6 +13,7 @@
 #include "ccd/exact_reference.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -129,9 +130,9 @@ double lower_bound_as_double(const AlgebraicPoint& point) {
   return point.is_rational ? point.value.get_d() : point.lo.get_d();
 }
 
-}  // namespace
-
-ExactAnswer exact_collision(PairKind kind, const RationalPoints& points) {
+// The candidate times (roots of D, or with D identically zero the roots of the other polynomials and samples between
+// them) at which the primitives touch; their earliest is the earliest contact.
+std::vector<AlgebraicPoint> contact_points(PairKind kind, const RationalPoints& points) {
   const SignSystem system = build_system(kind, points);
   std::vector<AlgebraicPoint> candidates;
   if (!is_zero(system.polys[0])) {
@@ -163,14 +164,41 @@ ExactAnswer exact_collision(PairKind kind, const RationalPoints& points) {
     for (std::size_t i = 0; i + 1 < sorted_count; ++i) samples.push_back((samples[i] + samples[i + 1]) / 2);
     for (const mpq_class& t : samples) candidates.push_back(AlgebraicPoint{true, t, {}, t, t});
   }
-  ExactAnswer answer;
+  std::vector<AlgebraicPoint> contacts;
   for (AlgebraicPoint& point : candidates) {
     Signs signs(system, point);
-    if (!predicate(system, signs)) continue;
+    if (predicate(system, signs)) contacts.push_back(std::move(point));
+  }
+  return contacts;
+}
+
+// The smallest double >= the non-negative rational x.
+double rounded_up(const mpq_class& x) {
+  const double d = x.get_d();
+  return mpq_class(d) < x ? std::nextafter(d, 2.0) : d;
+}
+
+}  // namespace
+
+ExactAnswer exact_collision(PairKind kind, const RationalPoints& points) {
+  ExactAnswer answer;
+  for (const AlgebraicPoint& point : contact_points(kind, points)) {
     answer.hit = true;
     answer.toi = std::min(answer.toi, lower_bound_as_double(point));
   }
   return answer;
+}
+
+ContactTimeBounds exact_contact_time(PairKind kind, const RationalPoints& points) {
+  const mpq_class width(1, mpz_class(1) << 40);
+  ContactTimeBounds bounds;
+  for (AlgebraicPoint& point : contact_points(kind, points)) {
+    narrow(point, width);
+    bounds.hit = true;
+    bounds.lo = std::min(bounds.lo, lower_bound_as_double(point));
+    bounds.hi = std::min(bounds.hi, rounded_up(point.is_rational ? point.value : point.hi));
+  }
+  return bounds;
 }
 
 }  // namespace clothcd::ccd::exact

@@ -785,17 +785,23 @@ double lower_bound(const Expansion& t) {
   return std::max(value, 0.0);
 }
 
-// A double not above the candidate's time: within a few units in the last place of a grid or rational time, within
-// kToiBracket of a bracketed root (the bracket is shrunk first, since the predicate may have held on a wide one).
-double lower_bound(Candidate& c) {
+// A double not above the candidate's time and at most kToiBracket (plus a rounding) below it: within a few units in the
+// last place of a grid or rational time, within kToiBracket of a bracketed root (the bracket is shrunk first, since the
+// predicate may have held on a wide one). nullopt when the bracket does not shrink that far or a rational time has no
+// such double found (the GMP reference then gives the time).
+std::optional<double> lower_bound(Candidate& c) {
   for (int i = 0; i < kMaxToiRefinements && !c.point && !c.rational && (c.hi - c.lo).estimate() > kToiBracket; ++i)
     if (!refine(c, *c.root_of)) break;
-  if (!c.rational) return lower_bound(c.lo);
+  if (!c.rational) {
+    if (!c.point && !((c.hi - c.lo).estimate() <= kToiBracket)) return std::nullopt;
+    return lower_bound(c.lo);
+  }
   double value = c.num.estimate() / c.den.estimate();
   // value >= 2^-200 keeps the exact product den * value far above the underflow threshold.
   for (int attempt = 0; attempt < 8 && value >= 0x1p-200; ++attempt, value = std::nextafter(value, 0.0))
     if ((c.num - c.den.scaled(value)).sign() >= 0) return std::min(value, 1.0);
-  return 0.0;  // always a valid lower bound
+  if (c.num.sign() == 0) return 0.0;
+  return std::nullopt;
 }
 
 // Candidates for the roots of p (degree n >= 1) in [0, 1]: a double root of a quadratic (zero discriminant) is the
@@ -925,8 +931,10 @@ std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
     const std::optional<bool> inside = Predicate(system, candidate, axis).holds();
     if (!inside) return std::nullopt;
     if (*inside) {
+      const std::optional<double> toi = lower_bound(candidate);
+      if (!toi) return std::nullopt;
       answer.hit = true;
-      answer.toi = std::min(answer.toi, lower_bound(candidate));
+      answer.toi = std::min(answer.toi, *toi);
     }
   }
   return answer;
@@ -950,7 +958,11 @@ std::optional<exact::ExactAnswer> decide(const CcdQuery& query) {
   for (Candidate& candidate : candidates) {
     const std::optional<bool> inside = Predicate(system, candidate).holds();
     if (!inside) return std::nullopt;
-    if (*inside) return exact::ExactAnswer{true, lower_bound(candidate)};
+    if (*inside) {
+      const std::optional<double> toi = lower_bound(candidate);
+      if (!toi) return std::nullopt;
+      return exact::ExactAnswer{true, *toi};
+    }
   }
   return exact::ExactAnswer{};
 }

@@ -36,11 +36,18 @@ inline ccd::CcdSettings exact_settings() {
   return settings;
 }
 
-/// Checks the answer of the default settings (undecided queries reported as conservative hits) against the exact
-/// mode's `exact`: never a miss, a proven hit only for a real one, and the same answer where it is not conservative.
-/// (That its toi is a lower bound is checked on the exact reference in test_ccd_differential.cpp.)
+/// Thickness 0, the approximate mode: undecided queries reported as conservative hits.
+inline ccd::CcdSettings approximate_settings() {
+  ccd::CcdSettings settings;
+  settings.decide_exactly = false;
+  return settings;
+}
+
+/// Checks the answer of the approximate mode against the exact mode's `exact`: never a miss, a proven hit only for a
+/// real one, and the same answer where it is not conservative. (That its toi is a lower bound is checked on the exact
+/// reference in test_ccd_differential.cpp.)
 inline void check_conservative_answer(const ccd::CcdQuery& query, const ccd::CcdResult& exact) {
-  const ccd::CcdResult fast = ccd::continuous_collision(query);
+  const ccd::CcdResult fast = ccd::continuous_collision(query, approximate_settings());
   if (exact.hit) CHECK(fast.hit);
   if (!exact.hit) CHECK(fast.state != ccd::CcdState::Hit);
   if (fast.state != ccd::CcdState::ConservativeHit) {

@@ -92,9 +92,9 @@ TEST_CASE("clothcd ccd decides queries with non-double coordinates on their exac
   }
 }
 
-TEST_CASE("clothcd ccd reports undecided queries as conservative hits unless --exact", "[ccd][cli]") {
+TEST_CASE("clothcd ccd decides every query exactly unless --approximate", "[ccd][cli]") {
   // A vertex-face query on a small integer grid (found by search) that interval arithmetic cannot decide and that
-  // misses by the exact reference: a conservative hit (a false positive) by default, a miss with --exact.
+  // misses by the exact reference: a miss by default, a conservative hit (a false positive) with --approximate.
   const char* points[8] = {"0,2,0", "1,0,0", "-1,1,2", "-2,2,-1", "0,-2,2", "-1,2,1", "1,1,-2", "0,-2,0"};
   std::string text;
   for (const char* p : points) {
@@ -105,14 +105,16 @@ TEST_CASE("clothcd ccd reports undecided queries as conservative hits unless --e
   }
   TempDir dir;
   write_file(dir / "undecided.csv", text);
-  const auto fast = run_cli("ccd '" + (dir / "undecided.csv").string() + "' --type vf --filter combined");
+  const auto fast =
+      run_cli("ccd '" + (dir / "undecided.csv").string() + "' --type vf --filter combined --approximate");
   REQUIRE(fast.exit_code == 0);
   check_counts(fast.output, 1, 1, 1, 0);
   CHECK_THAT(fast.output, Catch::Contains("(1 conservative)"));
-  const auto exact = run_cli("ccd '" + (dir / "undecided.csv").string() + "' --type vf --filter combined --exact");
+  CHECK_THAT(fast.output, Catch::Contains("reported as conservative hits"));
+  const auto exact = run_cli("ccd '" + (dir / "undecided.csv").string() + "' --type vf --filter combined");
   REQUIRE(exact.exit_code == 0);
   check_counts(exact.output, 1, 0, 0, 0);
-  CHECK_THAT(exact.output, Catch::Contains("decided exactly"));
+  CHECK_THAT(exact.output, Catch::Contains("(0 conservative)"));
 }
 
 TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cli][errors]") {
@@ -129,9 +131,10 @@ TEST_CASE("clothcd ccd rejects malformed input with a one-line error", "[ccd][cl
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type xx").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --filter bogus").exit_code == 1);
   CHECK(run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness -1").exit_code == 1);
-  const auto exact_thick = run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness 0.1 --exact");
-  CHECK(exact_thick.exit_code == 1);
-  CHECK_THAT(exact_thick.output, Catch::Contains("--exact decides only") && Catch::Contains("thickness"));
+  const auto approximate_thick =
+      run_cli("ccd '" + (dir / "ok.csv").string() + "' --type vf --thickness 0.1 --approximate");
+  CHECK(approximate_thick.exit_code == 1);
+  CHECK_THAT(approximate_thick.output, Catch::Contains("--approximate changes only") && Catch::Contains("thickness"));
   CHECK(run_cli("ccd '" + (dir / "missing").string() + "'").exit_code == 1);
 }
 

@@ -159,6 +159,38 @@ TEST_CASE("the time of impact is a lower bound of the earliest contact", "[ccd][
   if (!decide_exactly) CHECK(conservative > 0);  // the conservative hits' toi is checked too
 }
 
+TEST_CASE("a proven hit's time of impact is within 1e-6 below the exact earliest contact", "[ccd][differential]") {
+  // The exact earliest contact time, narrowed by the rational reference to 2^-40, must not lie before toi (never late)
+  // nor more than 1e-6 after it (tight); random, degenerate (contacts at t = 0 and 1, parallel edges, coplanar motion)
+  // and nearly touching queries.
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 9101u : 9102u);
+  int hits = 0, degenerate_hits = 0;
+  for (int i = 0; i < 400; ++i) {
+    const bool degenerate = i % 3 == 2;
+    const ccd::CcdQuery query = degenerate ? generator.degenerate_query(kind) : generator.random_query(kind);
+    const ccd::CcdResult result = ccd::continuous_collision(query);
+    ccd::exact::RationalPoints points;
+    for (int p = 0; p < 4; ++p) {
+      for (int d = 0; d < 3; ++d) {
+        points[p][d] = mpq_class(query.start[p][d]);
+        points[p + 4][d] = mpq_class(query.end[p][d]);
+      }
+    }
+    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(kind, points);
+    INFO("query " << i << " toi " << result.toi << " exact in [" << exact.lo << ", " << exact.hi << "]");
+    REQUIRE(result.hit == exact.hit);
+    if (!result.hit) continue;
+    CHECK(result.state == ccd::CcdState::Hit);
+    CHECK(result.toi <= exact.hi);
+    CHECK(result.toi >= exact.lo - 1e-6);
+    ++hits;
+    degenerate_hits += degenerate ? 1 : 0;
+  }
+  CHECK(hits > 100);
+  CHECK(degenerate_hits > 20);
+}
+
 TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference collision", "[ccd][differential]") {
   const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
   QueryGenerator generator(kind == PairKind::VertexFace ? 77u : 78u);

@@ -143,7 +143,7 @@ TEST_CASE("output paths are checked before the work starts", "[cli][errors]") {
     CHECK_THAT(run.output, Catch::StartsWith("clothcd: error: "));
   }
   CHECK_FALSE(std::filesystem::exists(dir / "pairs.csv"));  // train stopped before writing its random pairs
-  const auto exact = run_cli("detect " + box + " " + box + " --thickness 0.1 --exact");
-  CHECK(exact.exit_code == 1);
-  CHECK_THAT(exact.output, Catch::Contains("--exact decides only"));
+  const auto approximate = run_cli("detect " + box + " " + box + " --thickness 0.1 --approximate");
+  CHECK(approximate.exit_code == 1);
+  CHECK_THAT(approximate.output, Catch::Contains("--approximate changes only"));
 }

@@ -48,14 +48,14 @@ TEST_CASE("clothcd detect reports a cloth falling through a plate", "[detection]
   clothcd::save_mesh(t1, dir / "t1.obj");
 
   const fs::path json = dir / "out.json";
-  for (const std::string exact : {"", " --exact"}) {
-    INFO("options:" << exact);
+  for (const std::string approximate : {"", " --approximate"}) {
+    INFO("options:" << approximate);
     REQUIRE(run("detect " + (dir / "t0.obj").string() + " " + (dir / "t1.obj").string() + " --bvh aabb --out " +
-                    json.string() + exact,
+                    json.string() + approximate,
                 dir / "log.txt") == 0);
     const std::string out = read(json);
     // Each of the 16 cloth vertices crosses the plate at t = 0.5 (some exactly through a plate vertex or edge, which
-    // are conservative hits unless --exact): every toi is a lower bound of that, and a tight one.
+    // are conservative hits with --approximate): every toi is a lower bound of that, and a tight one.
     CHECK(out.find("\"vertex_face\": [") != std::string::npos);
     int tois = 0;
     for (std::size_t at = out.find("\"toi\": "); at != std::string::npos; at = out.find("\"toi\": ", at + 1)) {
@@ -66,8 +66,8 @@ TEST_CASE("clothcd detect reports a cloth falling through a plate", "[detection]
     }
     CHECK(tois >= 16);
     CHECK(out.find("\"vertex_face\": 0") == std::string::npos);
-    CHECK((out.find("\"exact\": true") != std::string::npos) == !exact.empty());
-    if (!exact.empty()) CHECK(out.find("\"conservative\": true") == std::string::npos);
+    CHECK((out.find("\"exact\": true") != std::string::npos) == approximate.empty());
+    if (approximate.empty()) CHECK(out.find("\"conservative\": true") == std::string::npos);
   }
 
   // A frame with one face fewer does not describe the same mesh.

@@ -62,7 +62,7 @@ TEST_CASE("the rod-twist vertex-face collision that float coordinates miss is fo
   rounded.vertices = rounded_to_float(frames.start.vertices);
   CHECK_FALSE(has_vertex_face(detect_exactly(rounded, rounded_to_float(frames.end)), frames.start.faces, 4, 0));
 
-  const auto run = clothcd::test::run_cli("detect --exact '" + (data / "rod-twist-pair-t0.ply").string() + "' '" +
+  const auto run = clothcd::test::run_cli("detect '" + (data / "rod-twist-pair-t0.ply").string() + "' '" +
                                           (data / "rod-twist-pair-t1.ply").string() + "'");
   CHECK(run.exit_code == 0);
   CHECK_THAT(run.output, Catch::Contains("collisions:  1 vertex-face"));
@@ -89,7 +89,7 @@ TEST_CASE("a vertex 1e-11 outside a triangle's edge does not collide with it", "
   rounded.vertices = rounded_to_float(frames.start.vertices);
   CHECK(has_vertex_face(detect_exactly(rounded, rounded_to_float(frames.end)), frames.start.faces, 3, 0));
 
-  const auto run = clothcd::test::run_cli("detect --exact '" + (dir / "t0.ply").string() + "' '" +
+  const auto run = clothcd::test::run_cli("detect '" + (dir / "t0.ply").string() + "' '" +
                                           (dir / "t1.ply").string() + "'");
   CHECK(run.exit_code == 0);
   CHECK_THAT(run.output, Catch::Contains("collisions:  0 vertex-face, 0 edge-edge"));

@@ -33,7 +33,7 @@ struct CcdCommandOptions {
   std::string filter = "combined";
   std::string network;
   double thickness = 0.0;
-  bool exact = false;
+  bool approximate = false;
   bool json = false;
   std::string per_query;
 };
@@ -74,7 +74,7 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
     report["path"] = options.path;
     report["filter"] = options.filter;
     report["thickness"] = options.thickness;
-    report["exact"] = options.exact;
+    report["exact"] = !options.approximate;
     report["queries"] = s.queries;
     report["colliding"] = s.colliding;
     report["conservative"] = s.conservative;
@@ -99,7 +99,7 @@ void print_summary(const CcdCommandOptions& options, const Summary& s) {
   const auto percent = [&](std::size_t n) { return s.queries ? 100.0 * static_cast<double>(n) / s.queries : 0.0; };
   std::cout << std::fixed << std::setprecision(1) << "path:                  " << options.path << '\n'
             << "filter:                " << options.filter << "  (thickness " << options.thickness
-            << (options.exact ? ", undecided queries decided exactly" : "") << ")\n"
+            << (options.approximate ? ", undecided queries reported as conservative hits" : "") << ")\n"
             << "queries:               " << s.queries << '\n'
             << "colliding:             " << s.colliding << "  (" << s.conservative << " conservative)\n";
   if (s.with_truth > 0) {
@@ -213,13 +213,13 @@ void run_ccd(const CcdCommandOptions& options) {
   const bool network = options.filter == "network";
   const ccd::CcdFilter filter = network ? ccd::CcdFilter::Combined : parse_filter(options.filter);
   check_network_needs_filter(options.network, options.filter);
-  check_exact_needs_zero_thickness(options.exact, options.thickness);
+  check_approximate_needs_zero_thickness(options.approximate, options.thickness);
   std::optional<PairKind> kind;
   if (options.type == "vf") kind = PairKind::VertexFace;
   if (options.type == "ee") kind = PairKind::EdgeEdge;
   ccd::CcdSettings settings;
   settings.thickness = options.thickness;
-  settings.decide_exactly = options.exact;
+  settings.decide_exactly = !options.approximate;
   if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness))
     throw std::invalid_argument("--thickness must be a finite number >= 0");
 
@@ -288,9 +288,9 @@ void add_ccd_command(CLI::App& app) {
   command->add_option("--thickness", options->thickness, "Minimum separation (>= 0)")
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()))
       ->capture_default_str();
-  command->add_flag("--exact", options->exact,
-                    "Thickness 0 only: decide the queries interval arithmetic leaves undecided exactly (no false positive, "
-                    "slower) instead of reporting them as conservative hits");
+  command->add_flag("--approximate", options->approximate,
+                    "Thickness 0 only: report the queries interval arithmetic leaves undecided as conservative hits "
+                    "(a few false positives) instead of deciding them exactly");
   add_json_flag(*command, options->json);
   command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");
   command->callback([options] { run_ccd(*options); });

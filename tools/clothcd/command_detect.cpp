@@ -28,7 +28,7 @@ struct DetectOptions {
   std::string t0_path;
   std::string t1_path;
   double thickness = 0.0;
-  bool exact = false;
+  bool approximate = false;
   std::string bvh = "sphere-root-aabb";
   std::string filter = "combined";
   std::string network;
@@ -95,7 +95,7 @@ Json detect_json(const DetectOptions& o, const TriangleMesh& mesh, const std::ve
   report["vertices"] = mesh.vertex_count();
   report["faces"] = mesh.face_count();
   report["thickness"] = o.thickness;
-  report["exact"] = o.exact;
+  report["exact"] = !o.approximate;
   report["bvh"] = o.bvh;
   report["filter"] = o.filter;
   report["counts"] = {{"candidates_vertex_face", s.candidates_vertex_face},
@@ -117,14 +117,14 @@ Json detect_json(const DetectOptions& o, const TriangleMesh& mesh, const std::ve
 
 void run_detect(const DetectOptions& o) {
   check_network_needs_filter(o.network, o.filter);
-  check_exact_needs_zero_thickness(o.exact, o.thickness);
+  check_approximate_needs_zero_thickness(o.approximate, o.thickness);
   if (!o.out.empty()) check_output_file(o.out, "--out");
   DetectorSettings settings;
   settings.hierarchy = hierarchy_named(o.bvh);
   settings.culling = culling_named(o.filter);
   learning::attach_network_culler(settings, o.network);
   settings.thickness = o.thickness;
-  settings.decide_exactly = o.exact;
+  settings.decide_exactly = !o.approximate;
 
   const auto t = std::chrono::steady_clock::now();
   const MeshFrames frames = load_mesh_frames(o.t0_path, o.t1_path);
@@ -174,9 +174,9 @@ void add_detect_command(CLI::App& app) {
   command->add_option("T1_MESH", o->t1_path, "Same mesh (same faces) at the end of the step")->required();
   command->add_option("--thickness", o->thickness, "Minimum separation, in mesh units")
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()));
-  command->add_flag("--exact", o->exact,
-                    "Thickness 0 only: decide the pairs interval arithmetic leaves undecided exactly instead of "
-                    "reporting them as conservative hits");
+  command->add_flag("--approximate", o->approximate,
+                    "Thickness 0 only: report the pairs interval arithmetic leaves undecided as conservative hits "
+                    "(toi a lower bound) instead of deciding them exactly");
   add_bvh_option(*command, o->bvh);
   add_filter_option(*command, o->filter);
   add_network_option(*command, o->network, "--model");

@@ -51,12 +51,11 @@ void add_bvh_option(CLI::App& command, std::string& bvh) {
 
 HierarchyKind hierarchy_named(const std::string& bvh) { return kHierarchies.at(bvh); }
 
-void check_exact_needs_zero_thickness(bool exact, double thickness) {
-  if (exact && thickness > 0.0)
+void check_approximate_needs_zero_thickness(bool approximate, double thickness) {
+  if (approximate && thickness > 0.0)
     throw std::invalid_argument(
-        "--exact decides only the touches of thickness 0 that interval arithmetic leaves open; with a thickness the "
-        "test is a distance search with a safety margin, which exact arithmetic does not replace (drop --exact or "
-        "--thickness)");
+        "--approximate changes only how the touches of thickness 0 that interval arithmetic leaves open are reported; "
+        "with a thickness the test is a distance search with a safety margin (drop --approximate or --thickness)");
 }
 
 void add_network_option(CLI::App& command, std::string& network, const std::string& old_spelling) {

@@ -37,8 +37,8 @@ void add_bvh_option(CLI::App& command, std::string& bvh);
 /// The hierarchy of a --bvh name.
 [[nodiscard]] HierarchyKind hierarchy_named(const std::string& bvh);
 
-/// Throws std::invalid_argument, saying why, when --exact comes with a thickness above 0.
-void check_exact_needs_zero_thickness(bool exact, double thickness);
+/// Throws std::invalid_argument, saying why, when --approximate comes with a thickness above 0.
+void check_approximate_needs_zero_thickness(bool approximate, double thickness);
 
 /// Adds `--network DIR` (a pair-network model folder or its network.xml, used with --filter network; default the
 /// committed models/default); `old_spelling`, when given, is a hidden alias.

@@ -35,16 +35,18 @@ struct CcdSettings {
   double thickness = 0.0;
   /// Thickness 0: what decides a query that outward-rounded interval arithmetic leaves undecided (the primitives touch
   /// exactly, e.g. a vertex on an edge at the coplanarity time or at t = 0 or 1, or miss by about a rounding error).
-  /// false: it is reported as a ConservativeHit (like Tight-Inclusion's tolerance: never a miss, a few false positives;
-  /// on the public benchmark's handcrafted queries 40 VF / 62 EE against Tight-Inclusion's 85 / 137, at 2.5x the
-  /// speed of the exact tiers). true: exact floating-point expansions decide it, then GMP rationals (no false positive).
-  bool decide_exactly = false;
+  /// true (the default): exact floating-point expansions decide it, then GMP rationals: every hit is proven, no false
+  /// positive. false, the approximate mode: it is reported as a ConservativeHit (never a miss, a few false positives,
+  /// toi only a lower bound).
+  bool decide_exactly = true;
 };
 
 /// How a CCD answer was established.
 enum class CcdState : std::uint8_t {
   Separated,        ///< Proven not to collide.
-  Hit,              ///< Proven to collide / come within the thickness (toi: lower bound of the earliest contact time).
+  /// Proven to collide / come within the thickness. Thickness 0: toi is a lower bound of the earliest contact time and
+  /// at most 2^-21 (< 1e-6) of the step below it.
+  Hit,
   /// Could not be proven either way (thickness > 0, or thickness 0 without CcdSettings::decide_exactly); reported as a
   /// hit, toi a lower bound.
   ConservativeHit,
@@ -85,7 +87,7 @@ enum class CcdFilter : std::uint8_t {
 void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 
 /// The fast, safe CCD test: never misses a collision. Thickness 0: interval arithmetic, and for the cases it leaves
-/// undecided a ConservativeHit or, with CcdSettings::decide_exactly, exact arithmetic; thickness > 0: distance search
+/// undecided exact arithmetic (or, without CcdSettings::decide_exactly, a ConservativeHit); thickness > 0: distance search
 /// in double precision with a conservative margin (see CcdSettings).
 /// Expects finite coordinates (see validate_query); non-finite input is reported as a ConservativeHit at toi 0.
 [[nodiscard]] CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings = {});

@@ -58,9 +58,10 @@ struct DetectorSettings {
   /// separates, the in-plane normals of their edges (ccd::ProjectionFilterOptions). Culls far more of a cloth resting
   /// on a surface at the thickness, and the neighbouring pairs of a flat sheet; false gives the paper's filter exactly.
   bool projection_normals = true;
-  /// Thickness 0: decide the pairs interval arithmetic leaves undecided exactly instead of reporting them as
-  /// conservative hits (ccd::CcdSettings::decide_exactly).
-  bool decide_exactly = false;
+  /// Thickness 0: every pair is decided, so every reported collision is a proven one (true, the default); false is the
+  /// approximate mode, which reports the pairs interval arithmetic leaves undecided as conservative hits
+  /// (ccd::CcdSettings::decide_exactly).
+  bool decide_exactly = true;
   /// Candidate pairs each thread holds between the broad phase and the exact test (1 .. kMaxBlockPairs): the search
   /// hands its candidates over in chunks of this many, and each thread culls and tests them in a block of this many
   /// pairs (about 240 bytes each) that it reuses, so memory does not grow with the number of candidates. The result
