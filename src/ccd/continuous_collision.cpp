@@ -3,22 +3,26 @@
 // Both pair kinds are one question: is the origin in conv W(t) for some t in [0, 1], with W = {v - f_i} (vertex-face)
 // or W = {a_i - b_j} (edge-edge), all linear in t (see exact_reference.cpp for why this is equivalent). The time range
 // is subdivided (left half first, so the first hit is the earliest); on each piece [t0, t1], with outward-rounded
-// interval arithmetic:
-//   - cleared when some coordinate of every W box has one strict sign (the origin is outside the boxes' hull), or,
-//     above the maximum depth, when that holds for both halves of the piece (checked before the tests below, which
-//     could then only clear it), or when the Bernstein coefficients of D(t) = det(x1 - x0, x2 - x0, x3 - x0) on the
-//     piece have one strict sign (no coplanarity), or when in some axis projection every triangle of W has 2D cross
-//     products of both strict signs (the origin is outside every triangle, so outside conv W);
+// interval arithmetic (W at a piece end from W at the step's ends, D's Bernstein coefficients on a piece by halving
+// its parent's):
+//   - cleared when some coordinate of every W box has one strict sign (the origin is outside the boxes' hull), or
+//     when that holds for both halves of the piece (checked before the tests below, which could then only clear it),
+//     or when the Bernstein coefficients of D(t) = det(x1 - x0, x2 - x0, x3 - x0) on the piece have one strict sign
+//     (no coplanarity), or, from depth 4 on (above it a piece only splits), when in some axis projection every
+//     triangle of W has 2D cross products of both strict signs (the origin is outside every triangle, so outside
+//     conv W);
 //   - proven hit when D certainly changes sign over the piece (a coplanar instant exists) and, in some projection,
 //     one triangle of W has three 2D cross products of the same strict sign (a non-degenerate projected triangle with
-//     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact is
-//     then tightened to the first sub-piece where D is not certainly non-zero.
-// A piece left undecided at the maximum depth makes the query a conservative hit (toi: where D may first vanish in
-// the piece), or with CcdSettings::decide_exactly hands it to the exact expansion tier (expansion_collision.cpp), and
-// what that cannot decide to the exact rational reference, so no collision is ever missed; so does, before any
-// subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could decide (a conservative hit at
-// toi 0). With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance search of
-// thickness_contact.cpp decides (no rational arithmetic).
+//     the origin strictly inside, which at the coplanar instant puts the origin inside conv W); the time of impact,
+//     D's first root in the piece, is then bracketed by de Casteljau halving to within 2^-21 of the step, and a
+//     bracket that cannot be proven that tight leaves the piece undecided.
+// Undecided pieces split on to depth 4, and with CcdSettings::decide_exactly deeper within a budget of pieces; a
+// query still undecided then goes to the exact expansion tier (expansion_collision.cpp), and what that cannot decide
+// to the exact rational reference, so no collision is ever missed and every hit is proven; so does, before any
+// subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could decide. Without decide_exactly
+// (the approximate mode) an undecided query is a conservative hit instead (toi: where D may first vanish, 0 for a
+// touch at the ends). With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance
+// search of thickness_contact.cpp decides (no rational arithmetic).
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -83,21 +87,10 @@ struct IVec {
 
 using Positions = std::array<IVec, 4>;
 
-// Enclosures of the four points at time t (exact double).
-void positions_at(const CcdQuery& query, double t, Positions& x) {
-  for (int i = 0; i < 4; ++i) {
-    for (int d = 0; d < 3; ++d) {
-      const double s = query.start[i][d];
-      const double e = query.end[i][d];
-      if (t == 0.0) {
-        x[i].c[d] = detail::exact(s);
-      } else if (t == 1.0) {
-        x[i].c[d] = detail::exact(e);
-      } else {
-        x[i].c[d] = detail::exact(s) + detail::scaled(detail::exact(e) - detail::exact(s), t);
-      }
-    }
-  }
+// The four points at the start (t = 0) or the end (t = 1) of the step, exactly.
+void end_positions(const std::array<Eigen::Vector3d, 4>& points, Positions& x) {
+  for (int i = 0; i < 4; ++i)
+    for (int d = 0; d < 3; ++d) x[i].c[d] = detail::exact(points[i][d]);
 }
 
 struct PointSet {
@@ -115,9 +108,9 @@ void difference_points(PairKind kind, const Positions& x, PointSet& set) {
   }
 }
 
-// D's ingredients on a piece whose end positions are x0 and x1: the edge vectors from x[0] at both ends and their end
-// cross products, from which D at the ends follows (what a touch at t = 0 or 1 needs) and, only when a piece is not
-// cleared first, its middle Bernstein coefficients.
+// D's ingredients on the step, whose end positions are x0 and x1: the edge vectors from x[0] at both ends and their
+// end cross products, from which D at the ends follows (what a touch at t = 0 or 1 needs) and its middle Bernstein
+// coefficients.
 struct DetParts {
   IVec a0, b0, c0, a1, b1, c1, bc00, bc11;
 };
@@ -135,7 +128,7 @@ DetParts det_parts(const Positions& x0, const Positions& x1) {
   return p;
 }
 
-// Bernstein coefficients of D on the piece (the middle two times 3). D is trilinear in (a, b, c), so they are
+// Bernstein coefficients of D on the step (the middle two times 3). D is trilinear in (a, b, c), so they are
 // a0.(b0 x c0), a1.(b0 x c0) + a0.(b1 x c0 + b0 x c1), and so on: four cross products shared by the six dot products
 // (interval arithmetic is subdistributive: no wider than the ten determinants, up to rounding).
 std::array<Interval, 4> bernstein_of_d(const DetParts& p) {
@@ -228,19 +221,28 @@ bool undecidable_end(const PointSet& w, const Interval& d_at_end) {
   return !boxes_exclude_origin(w, 0.0) && classify_projections(w, false) != PieceOutcome::Clear;
 }
 
-// One end of a piece: the four positions and W there (each computed once, shared by the two pieces that meet there).
-struct PieceEnd {
-  Positions x;
-  PointSet w;
+// W over the step: W(t) = W(0) + t (W(1) - W(0)), each difference point linear in t. Its enclosures at the step's ends
+// come from the exact end positions, so W(0) + t (W(1) - W(0)) encloses W(t) in interval arithmetic (both terms
+// enclose their real values); each piece end's W is computed once, shared by the two pieces that meet there.
+struct Motion {
+  PointSet start;
+  IVec change[4];
 };
 
-void piece_end(const CcdQuery& query, double t, PieceEnd& end) {
-  positions_at(query, t, end.x);
-  difference_points(query.kind, end.x, end.w);
+Motion motion_of(const PointSet& start, const PointSet& end) {
+  Motion motion{start, {}};
+  for (int m = 0; m < start.count; ++m) motion.change[m] = end.w[m] - start.w[m];
+  return motion;
+}
+
+void w_at(const Motion& motion, double t, PointSet& w) {
+  w.count = motion.start.count;
+  for (int m = 0; m < w.count; ++m)
+    for (int d = 0; d < 3; ++d) w.w[m].c[d] = motion.start.w[m].c[d] + detail::scaled(motion.change[m].c[d], t);
 }
 
 struct Search {
-  const CcdQuery& query;
+  const Motion& motion;
   int max_depth = kMaxDepth;  // pieces at this depth are not split
   int deep_pieces_left = 0;   // pieces below kMaxDepth this query may still examine
   double toi = 1.0;
@@ -296,22 +298,22 @@ RootBound first_root_lower_bound(double t0, double t1, TripledBernstein b) {
 }
 
 // The boxes of W over a piece: each difference point's hull over the piece's two ends.
-PointSet piece_boxes(const PieceEnd& e0, const PieceEnd& e1) {
+PointSet piece_boxes(const PointSet& e0, const PointSet& e1) {
   PointSet boxes;
-  boxes.count = e0.w.count;
-  for (int m = 0; m < e0.w.count; ++m) boxes.w[m] = hull(e0.w.w[m], e1.w.w[m]);
+  boxes.count = e0.count;
+  for (int m = 0; m < e0.count; ++m) boxes.w[m] = hull(e0.w[m], e1.w[m]);
   return boxes;
 }
 
 // The two halves of a piece split at `mid`: the middle end and each half's boxes, and whether they exclude the origin.
 struct Halves {
-  PieceEnd middle;
+  PointSet middle;
   PointSet left_boxes, right_boxes;
   bool left_clear = false, right_clear = false;
 };
 
-void split_piece(const CcdQuery& query, double mid, const PieceEnd& e0, const PieceEnd& e1, Halves& halves) {
-  piece_end(query, mid, halves.middle);
+void split_piece(const Motion& motion, double mid, const PointSet& e0, const PointSet& e1, Halves& halves) {
+  w_at(motion, mid, halves.middle);
   halves.left_boxes = piece_boxes(e0, halves.middle);
   halves.right_boxes = piece_boxes(halves.middle, e1);
   halves.left_clear = boxes_exclude_origin(halves.left_boxes, 0.0);
@@ -320,7 +322,7 @@ void split_piece(const CcdQuery& query, double mid, const PieceEnd& e0, const Pi
 
 // Decides the piece [t0, t1] with ends e0 and e1, whose W boxes `boxes` do not exclude the origin and on which D has
 // the coefficients `bernstein` (computed from the positions on the whole step, by halving the parent's below it).
-PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PieceEnd& e0, const PieceEnd& e1,
+PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PointSet& e0, const PointSet& e1,
                                   const PointSet& boxes, int depth, const TripledBernstein& bernstein) {
   const double mid = 0.5 * (t0 + t1);
   if (depth > kMaxDepth && common_strict_sign(bernstein) == 0 && --search.deep_pieces_left < 0)
@@ -333,12 +335,12 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Pi
   Halves halves;
   const bool halves_first = depth == 0;
   if (can_split && halves_first) {
-    split_piece(search.query, mid, e0, e1, halves);
+    split_piece(search.motion, mid, e0, e1, halves);
     if (halves.left_clear && halves.right_clear) return PieceOutcome::Clear;
   }
   if (common_strict_sign(bernstein) != 0) return PieceOutcome::Clear;
   if (can_split && !halves_first) {
-    split_piece(search.query, mid, e0, e1, halves);
+    split_piece(search.motion, mid, e0, e1, halves);
     if (halves.left_clear && halves.right_clear) return PieceOutcome::Clear;
   }
   const int sign_start = certain_sign(bernstein[0]);
@@ -459,17 +461,22 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
   if (!nonpenetration_checked && nonpenetration_filter_culls(query)) return CcdResult{};
   if (fits_fast_path(query)) {
     double undecided_from = 0.0;  // lower bound of the earliest contact when undecided
-    PieceEnd start, end;
-    piece_end(query, 0.0, start);
-    piece_end(query, 1.0, end);
+    Positions x0, x1;
+    end_positions(query.start, x0);
+    end_positions(query.end, x1);
+    PointSet start, end;
+    difference_points(query.kind, x0, start);
+    difference_points(query.kind, x1, end);
     // D at t = 0 and 1 from the whole step's parts, which the first piece reuses.
-    const DetParts parts = det_parts(start.x, end.x);
-    if (!undecidable_end(start.w, dot(parts.a0, parts.bc00)) && !undecidable_end(end.w, dot(parts.a1, parts.bc11))) {
-      Search search{query, decide_exactly ? kMaxExactDepth : kMaxDepth, kDeepPieceBudget, 1.0};
+    const DetParts parts = det_parts(x0, x1);
+    if (!undecidable_end(start, dot(parts.a0, parts.bc00)) && !undecidable_end(end, dot(parts.a1, parts.bc11))) {
+      const Motion motion = motion_of(start, end);
+      Search search{motion, decide_exactly ? kMaxExactDepth : kMaxDepth, kDeepPieceBudget, 1.0};
       const PointSet boxes = piece_boxes(start, end);
-      const PieceOutcome outcome = boxes_exclude_origin(boxes, 0.0)
-                                       ? PieceOutcome::Clear
-                                       : search_exact_contact(search, 0.0, 1.0, start, end, boxes, 0, tripled(bernstein_of_d(parts)));
+      const PieceOutcome outcome =
+          boxes_exclude_origin(boxes, 0.0)
+              ? PieceOutcome::Clear
+              : search_exact_contact(search, 0.0, 1.0, start, end, boxes, 0, tripled(bernstein_of_d(parts)));
       if (outcome == PieceOutcome::Clear) return CcdResult{};
       if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
       undecided_from = search.toi;
