@@ -58,8 +58,9 @@ def test_repr_is_one_line_of_counts():
         "Collisions(2: 1 vertex-face, 1 edge-edge, earliest toi 0.25, 1 conservative)")
     found = plate_collisions()
     vertex_face = int(np.count_nonzero(found.kind == clothcd.VERTEX_FACE))
+    conservative = int(np.count_nonzero(found.conservative))
     assert repr(found) == (f"Collisions({len(found)}: {vertex_face} vertex-face, {len(found) - vertex_face} edge-edge, "
-                           f"earliest toi {found.toi.min():.6g}, 0 conservative)")
+                           f"earliest toi {found.toi.min():.6g}, {conservative} conservative)")
     assert "\n" not in repr(found)
 
 
