@@ -9,7 +9,6 @@ Errors arrive with the library's message: invalid arguments as ValueError, unrea
 from __future__ import annotations
 
 import os
-from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -27,50 +26,18 @@ from ._clothcd import (
     simplify,
 )
 from . import _clothcd
+from .collisions import EDGE_EDGE, VERTEX_FACE, Collision, Collisions
 
 __all__ = [
-    "__version__", "Collisions", "CollisionDetector", "ccd", "default_model_dir", "load_mesh", "load_mesh_frames", "make_grid",
-    "make_paper_cloth", "make_uv_sphere", "obb", "render_png", "save_mesh", "simplify", "simulate", "simulate_scene",
+    "__version__", "Collision", "Collisions", "CollisionDetector", "ccd", "default_model_dir", "load_mesh",
+    "load_mesh_frames", "make_grid", "make_paper_cloth", "make_uv_sphere", "obb", "render_png", "save_mesh", "simplify",
+    "simulate", "simulate_scene",
 ]
-
-VERTEX_FACE = 0
-"""Collisions.kind of a vertex-face pair: vertices[0] is the vertex, vertices[1:4] the triangle."""
-EDGE_EDGE = 1
-"""Collisions.kind of an edge-edge pair: vertices[0:2] is edge a, vertices[2:4] edge b."""
 
 
 def default_model_dir() -> str:
     """The pair network shipped with the package (the repository's models/default)."""
     return os.path.join(os.path.dirname(__file__), "models", "default")
-
-
-class Collisions(NamedTuple):
-    """Every collision of one step, one row per colliding primitive pair."""
-
-    kind: np.ndarray
-    """(n,) uint8: VERTEX_FACE (0) or EDGE_EDGE (1)."""
-    bodies: np.ndarray
-    """(n, 4) int32: body of each vertex (0 = cloth, k = the k-th obstacle added)."""
-    vertices: np.ndarray
-    """(n, 4) int32: vertex index of each vertex in its body, ordered as `kind` says."""
-    toi: np.ndarray
-    """(n,) float64: earliest time of impact as a fraction of the step (a lower bound when conservative)."""
-    parameters: np.ndarray
-    """(n, 2) float64: vertex-face: barycentric w1, w2 on the triangle; edge-edge: s on edge a, u on edge b."""
-    normal: np.ndarray
-    """(n, 3) float64: unit contact normal at toi, from the second primitive to the first."""
-    conservative: np.ndarray
-    """(n,) bool: reported because the CCD could not decide the pair."""
-
-    @property
-    def vertex_face(self) -> np.ndarray:
-        """(m, 4) vertices of the vertex-face pairs: vertex, then the triangle's three vertices."""
-        return self.vertices[self.kind == VERTEX_FACE]
-
-    @property
-    def edge_edge(self) -> np.ndarray:
-        """(m, 4) vertices of the edge-edge pairs: edge a's two vertices, then edge b's."""
-        return self.vertices[self.kind == EDGE_EDGE]
 
 
 class CollisionDetector:
