@@ -36,8 +36,8 @@ struct CcdSettings {
   /// Thickness 0: what decides a query that outward-rounded interval arithmetic leaves undecided (the primitives touch
   /// exactly, e.g. a vertex on an edge at the coplanarity time or at t = 0 or 1, or miss by about a rounding error).
   /// false: it is reported as a ConservativeHit (like Tight-Inclusion's tolerance: never a miss, a few false positives;
-  /// on the public benchmark's handcrafted queries 40 VF / 62 EE against Tight-Inclusion's 85 / 137, at 2.5x the
-  /// speed of the exact tiers). true: exact floating-point expansions decide it, then GMP rationals (no false positive).
+  /// the benchmark report's CCD section counts them against Tight-Inclusion's). true: exact floating-point expansions
+  /// decide it, then GMP rationals (no false positive, slower).
   bool decide_exactly = false;
 };
 
