@@ -7,6 +7,7 @@
 #include "clothcd/version.hpp"
 #include "clothcd/simd_level.hpp"
 #include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/brute_force_candidates.hpp"
 #include "clothcd/broadphase/bvh.hpp"
 #include "clothcd/broadphase/candidates.hpp"
 #include "clothcd/broadphase/hierarchy_kind.hpp"

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "broadphase/body_view_check.hpp"
 #include "broadphase/leaf_pairs.hpp"
 #include "clothcd/broadphase/packed_boxes.hpp"
 #include "clothcd/simd_level.hpp"
@@ -317,15 +318,6 @@ void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& ro
   }
 }
 
-void check_view(const BodyView& view, bool needs_bvh) {
-  if (view.topology == nullptr || view.boxes == nullptr || (needs_bvh && view.bvh == nullptr)) {
-    throw std::invalid_argument("broad phase: body " + std::to_string(view.body) + " is missing its data");
-  }
-  if (needs_bvh && view.bvh->nodes().empty()) {
-    throw std::invalid_argument("broad phase: the hierarchy of body " + std::to_string(view.body) + " is not built");
-  }
-}
-
 void check_moved(const BodyView& view, const TraversalSettings& settings) {
   if (settings.moved_vertices != nullptr &&
       static_cast<int>(settings.moved_vertices->size()) != view.topology->vertex_count) {
@@ -527,7 +519,7 @@ void check_chunk(const TraversalSettings& settings, const Output& output) {
 // find_self_candidates into `output`.
 void self_search(const BodyView& body, const TraversalSettings& settings, const Output& output,
                  TraversalStats* stats) {
-  check_view(body, true);
+  detail::check_view(body, true);
   check_chunk(settings, output);
   TraversalStats local;
   const Bvh& t = *body.bvh;
@@ -556,8 +548,8 @@ void self_search(const BodyView& body, const TraversalSettings& settings, const 
 // find_pair_candidates into `output`.
 void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& settings, const Output& output,
                  TraversalStats* stats) {
-  check_view(a, true);
-  check_view(b, true);
+  detail::check_view(a, true);
+  detail::check_view(b, true);
   check_chunk(settings, output);
   TraversalStats local;
   const Bvh& ta = *a.bvh;
@@ -621,44 +613,12 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
   pair_search(a, b, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
 }
 
-void brute_force_self_candidates(const BodyView& body, CandidateSet& out) {
-  check_view(body, false);
-  const BodyTopology& topo = *body.topology;
-  const SweptBoxes& boxes = *body.boxes;
-  for (int v = 0; v < topo.vertex_count; ++v) {
-    if (topo.vertex_owner[v] < 0) continue;
-    for (int f = 0; f < topo.face_count(); ++f) {
-      if (!topo.face_has_vertex(f, v) && boxes.vertices[v].overlaps(boxes.faces[f])) {
-        out.vertex_face.push_back({body.body, v, body.body, f});
-      }
-    }
+void detail::check_view(const BodyView& view, bool needs_bvh) {
+  if (view.topology == nullptr || view.boxes == nullptr || (needs_bvh && view.bvh == nullptr)) {
+    throw std::invalid_argument("broad phase: body " + std::to_string(view.body) + " is missing its data");
   }
-  for (int e = 0; e < topo.edge_count(); ++e) {
-    for (int g = e + 1; g < topo.edge_count(); ++g) {
-      if (!topo.edges_share_vertex(e, g) && boxes.edges[e].overlaps(boxes.edges[g])) {
-        out.edge_edge.push_back({body.body, e, body.body, g});
-      }
-    }
-  }
-}
-
-void brute_force_pair_candidates(const BodyView& a, const BodyView& b, CandidateSet& out) {
-  check_view(a, false);
-  check_view(b, false);
-  auto vertices_against_faces = [&out](const BodyView& vb, const BodyView& fb) {
-    for (int v = 0; v < vb.topology->vertex_count; ++v) {
-      if (vb.topology->vertex_owner[v] < 0) continue;
-      for (int f = 0; f < fb.topology->face_count(); ++f) {
-        if (vb.boxes->vertices[v].overlaps(fb.boxes->faces[f])) out.vertex_face.push_back({vb.body, v, fb.body, f});
-      }
-    }
-  };
-  vertices_against_faces(a, b);
-  vertices_against_faces(b, a);
-  for (int e = 0; e < a.topology->edge_count(); ++e) {
-    for (int g = 0; g < b.topology->edge_count(); ++g) {
-      if (a.boxes->edges[e].overlaps(b.boxes->edges[g])) out.edge_edge.push_back({a.body, e, b.body, g});
-    }
+  if (needs_bvh && view.bvh->nodes().empty()) {
+    throw std::invalid_argument("broad phase: the hierarchy of body " + std::to_string(view.body) + " is not built");
   }
 }
 

@@ -19,7 +19,7 @@ namespace clothcd::ccd::detail {
 
 namespace {
 
-constexpr int kLanes = QueryBlock::kLanes;
+constexpr int kLanes = PairLanes::kLanes;
 constexpr double kBoundFactor = 16 * 0x1p-53;
 constexpr double kTiny = 1e-300;
 constexpr double kLargest = 1e100;
@@ -73,7 +73,7 @@ struct PassDirections {
 // `Thick`: thickness > 0. At thickness 0 the term thickness |s| is 0 whatever |s| is, so the square roots are skipped
 // (the same thresholds bit for bit).
 template <bool VertexFace, bool Thick>
-[[gnu::always_inline]] inline void filter_block(const QueryBlock& b, double thickness, PassDirections pass,
+[[gnu::always_inline]] inline void filter_block(const PairLanes& b, double thickness, PassDirections pass,
                                                 std::uint8_t* out) {
   const auto& x = b.x;
   // M: the largest coordinate magnitude of the lane's pair; infinite when a coordinate is not a number (std::max drops
@@ -180,7 +180,7 @@ template <bool VertexFace, bool Thick>
 #undef INLINE_LAMBDA
 
 // The template for the block's kind and for thickness 0 or not; inlined into each instruction set's function below.
-[[gnu::always_inline]] inline void filter_any(const QueryBlock& b, double thickness, PassDirections pass,
+[[gnu::always_inline]] inline void filter_any(const PairLanes& b, double thickness, PassDirections pass,
                                               std::uint8_t* out) {
   if (thickness > 0.0) {
     if (b.kind == PairKind::VertexFace) return filter_block<true, true>(b, thickness, pass, out);
@@ -192,17 +192,17 @@ template <bool VertexFace, bool Thick>
 
 // Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
 // the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
-void filter_baseline(const QueryBlock& b, double thickness, PassDirections pass, std::uint8_t* out) {
+void filter_baseline(const PairLanes& b, double thickness, PassDirections pass, std::uint8_t* out) {
   filter_any(b, thickness, pass, out);
 }
 
 #if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_AVX2 void filter_avx2(const QueryBlock& b, double thickness, PassDirections pass,
+CLOTHCD_SIMD_AVX2 void filter_avx2(const PairLanes& b, double thickness, PassDirections pass,
                                                  std::uint8_t* out) {
   filter_any(b, thickness, pass, out);
 }
 
-CLOTHCD_SIMD_AVX512 void filter_avx512(const QueryBlock& b, double thickness, PassDirections pass,
+CLOTHCD_SIMD_AVX512 void filter_avx512(const PairLanes& b, double thickness, PassDirections pass,
                                                       std::uint8_t* out) {
   filter_any(b, thickness, pass, out);
 }
@@ -210,7 +210,7 @@ CLOTHCD_SIMD_AVX512 void filter_avx512(const QueryBlock& b, double thickness, Pa
 
 }  // namespace
 
-void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
+void projection_filter_block(const PairLanes& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled, SimdLevel level,
                              BlockPass pass) {
   if (!(settings.thickness >= 0.0 && std::isfinite(settings.thickness))) {  // as the per-pair filter: no verdict
@@ -240,19 +240,19 @@ void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSe
   culled.assign(queries.size(), 0);
   // One pass over the queries at the positions `todo`, in blocks of one kind formed in order.
   auto run = [&](const std::vector<std::size_t>& todo, BlockPass pass) {
-    QueryBlock block;
+    PairLanes block;
     std::size_t first = 0;
     auto flush = [&]() {
       if (block.count == 0) return;
       block.pad_unused();
-      std::uint8_t block_culled[QueryBlock::kLanes];
+      std::uint8_t block_culled[PairLanes::kLanes];
       projection_filter_block(block, settings, options, block_culled, level, pass);
       for (int lane = 0; lane < block.count; ++lane) culled[todo[first + lane]] = block_culled[lane];
       first += static_cast<std::size_t>(block.count);
       block.count = 0;
     };
     for (const std::size_t i : todo) {
-      if (block.count == QueryBlock::kLanes || (block.count > 0 && queries[i].kind != block.kind)) flush();
+      if (block.count == PairLanes::kLanes || (block.count > 0 && queries[i].kind != block.kind)) flush();
       block.kind = queries[i].kind;
       block.set(block.count++, queries[i]);
     }

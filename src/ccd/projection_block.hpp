@@ -10,9 +10,6 @@
 
 namespace clothcd::ccd::detail {
 
-/// The block filters' lane group (see PairLanes).
-using QueryBlock = PairLanes;
-
 /// The in-plane directions of ProjectionFilterOptions::use_primitive_normals on one pair (the last directions the
 /// per-pair filter tries; the block filter computes the same directions on its lanes): true when one of them
 /// separates the primitives by more than the thickness over the whole step.
@@ -35,7 +32,7 @@ enum class BlockPass {
 /// some of the directions (a lane is culled by All exactly when Normals or AfterNormals culls it).
 /// Runs the version compiled for `level`, one of cpu_simd_levels(); every level gives the same verdicts (the same IEEE
 /// operations in the same order, never fused).
-void projection_filter_block(const QueryBlock& block, const CcdSettings& settings,
+void projection_filter_block(const PairLanes& block, const CcdSettings& settings,
                              const ProjectionFilterOptions& options, std::uint8_t* culled,
                              SimdLevel level = simd_level(), BlockPass pass = BlockPass::All);
 

@@ -108,7 +108,7 @@ void write_pair_dataset_csv(const PairDataset& dataset, const std::string& path)
       std::snprintf(number, sizeof number, "%.17g", dataset.row(i)[f]);
       file << number << ',';
     }
-    file << dataset.filter_label[i] << ',' << dataset.exact_label[i] << ',' << pair_type_name(dataset.type[i]) << ','
+    file << dataset.filter_label[i] << ',' << dataset.exact_label[i] << ',' << pair_kind_name(dataset.type[i]) << ','
          << dataset.scene[i] << ',' << split_name(dataset.split[i]) << '\n';
   }
   if (!file.flush()) throw std::runtime_error(path + ": write failed");
@@ -142,7 +142,7 @@ PairDataset read_pair_dataset_csv(const std::string& path) {
     dataset.exact_label.push_back(parse_label(fields[features + 1], path, line_number, "exact_label"));
     const std::string& type = fields[features + 2];
     if (type != "VF" && type != "EE") fail(path, line_number, "type '" + type + "' is not VF or EE");
-    dataset.type.push_back(type == "VF" ? PairType::VertexFace : PairType::EdgeEdge);
+    dataset.type.push_back(type == "VF" ? PairKind::VertexFace : PairKind::EdgeEdge);
     dataset.scene.push_back(fields[features + 3]);
     const std::string& split = fields[features + 4];
     if (split == "training") dataset.split.push_back(Split::Training);

@@ -217,21 +217,21 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-[[gnu::always_inline]] inline void blocks(const PairGeometry* pairs, std::size_t count, std::size_t features,
+[[gnu::always_inline]] inline void blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
                                           PairFeatureBatch& batch) {
   const std::size_t dense = std::min<std::size_t>(features, 15);
   for (std::size_t first = 0; first < count; first += kLanes) {
     const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
     PairBlock b;
     for (int l = 0; l < kLanes; ++l) {
-      const PairGeometry& p = pairs[first + static_cast<std::size_t>(l < used ? l : 0)];
+      const ccd::CcdQuery& p = pairs[first + static_cast<std::size_t>(l < used ? l : 0)];
       for (int k = 0; k < 4; ++k) {
         for (int c = 0; c < 3; ++c) {
           b.x[0][k].c[c].v[l] = p.start[k][c];
           b.x[1][k].c[c].v[l] = p.end[k][c];
         }
       }
-      b.is_edge_edge.v[l] = p.kind == PairType::EdgeEdge ? 1.0 : 0.0;
+      b.is_edge_edge.v[l] = p.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
     }
     double out[kMaxPairFeatures][kLanes];
     block_features(b, features, out);
@@ -251,16 +251,16 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-void blocks_baseline(const PairGeometry* pairs, std::size_t count, std::size_t features, PairFeatureBatch& batch) {
+void blocks_baseline(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, PairFeatureBatch& batch) {
   blocks(pairs, count, features, batch);
 }
 
 #if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_AVX2 void blocks_avx2(const PairGeometry* pairs, std::size_t count, std::size_t features,
+CLOTHCD_SIMD_AVX2 void blocks_avx2(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
                                                  PairFeatureBatch& batch) {
   blocks(pairs, count, features, batch);
 }
-CLOTHCD_SIMD_AVX512 void blocks_avx512(const PairGeometry* pairs, std::size_t count,
+CLOTHCD_SIMD_AVX512 void blocks_avx512(const ccd::CcdQuery* pairs, std::size_t count,
                                                       std::size_t features, PairFeatureBatch& batch) {
   blocks(pairs, count, features, batch);
 }
@@ -268,13 +268,13 @@ CLOTHCD_SIMD_AVX512 void blocks_avx512(const PairGeometry* pairs, std::size_t co
 
 }  // namespace
 
-bool pair_coordinates_finite(const PairGeometry& pair) {
+bool pair_coordinates_finite(const ccd::CcdQuery& pair) {
   double coordinate_sum = 0.0;
   for (std::size_t k = 0; k < 4; ++k) coordinate_sum += pair.start[k].sum() + pair.end[k].sum();
   return std::isfinite(coordinate_sum);
 }
 
-void compute_feature_blocks(const PairGeometry* pairs, std::size_t count, std::size_t features, SimdLevel level,
+void compute_feature_blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, SimdLevel level,
                             PairFeatureBatch& batch) {
 #if defined(CLOTHCD_SIMD_X86)
   if (level == SimdLevel::Avx512) return blocks_avx512(pairs, count, features, batch);

@@ -13,10 +13,10 @@ namespace clothcd::learning::detail {
 /// Writes the first `features` (1..kMaxPairFeatures) features of pairs[0, count) into `batch` (already sized
 /// count x features): feature f of pair i at batch.values[f * count + i]. Runs the build for `level`, one of
 /// cpu_simd_levels() (the results are the same at every level).
-void compute_feature_blocks(const PairGeometry* pairs, std::size_t count, std::size_t features, SimdLevel level,
+void compute_feature_blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, SimdLevel level,
                             PairFeatureBatch& batch);
 
 /// Whether every coordinate sum of the pair is finite: the per-pair and the block code mark pairs failing it invalid.
-[[nodiscard]] bool pair_coordinates_finite(const PairGeometry& pair);
+[[nodiscard]] bool pair_coordinates_finite(const ccd::CcdQuery& pair);
 
 }  // namespace clothcd::learning::detail

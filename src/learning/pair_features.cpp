@@ -39,7 +39,7 @@ double same_sign_margin(const double* values, int count) {
 }
 
 // Bernstein coefficients of D(t) on [0, 1] from the power-basis coefficients of the triple product.
-std::array<double, 4> coplanarity_bernstein(const PairGeometry& pair) {
+std::array<double, 4> coplanarity_bernstein(const ccd::CcdQuery& pair) {
   const Eigen::Vector3d a1 = pair.start[1] - pair.start[0], a2 = pair.start[2] - pair.start[0],
                         a3 = pair.start[3] - pair.start[0];
   const Eigen::Vector3d v1 = (pair.end[1] - pair.end[0]) - a1, v2 = (pair.end[2] - pair.end[0]) - a2,
@@ -53,11 +53,11 @@ std::array<double, 4> coplanarity_bernstein(const PairGeometry& pair) {
 
 // Projected gaps of eq. 8 (vertex-face: vertex minus each triangle corner) or eq. 9 (edge-edge: each end of one edge
 // minus each end of the other), at t = 0 and t = 1, along direction s; returns their count.
-int projected_gaps(const PairGeometry& pair, const Eigen::Vector3d& s, double* gaps) {
+int projected_gaps(const ccd::CcdQuery& pair, const Eigen::Vector3d& s, double* gaps) {
   int n = 0;
   for (const auto* positions : {&pair.start, &pair.end}) {
     const auto& x = *positions;
-    if (pair.kind == PairType::VertexFace) {
+    if (pair.kind == PairKind::VertexFace) {
       for (int k = 1; k < 4; ++k) gaps[n++] = (x[0] - x[k]).dot(s);
     } else {
       for (int a = 0; a < 2; ++a)
@@ -68,18 +68,18 @@ int projected_gaps(const PairGeometry& pair, const Eigen::Vector3d& s, double* g
 }
 
 // Distance between the centres of the two primitives (vertex vs triangle centroid, edge midpoint vs edge midpoint).
-double centre_gap(PairType type, const std::array<Eigen::Vector3d, 4>& x) {
-  if (type == PairType::VertexFace) return (x[0] - (x[1] + x[2] + x[3]) / 3.0).norm();
+double centre_gap(PairKind type, const std::array<Eigen::Vector3d, 4>& x) {
+  if (type == PairKind::VertexFace) return (x[0] - (x[1] + x[2] + x[3]) / 3.0).norm();
   return (0.5 * (x[0] + x[1]) - 0.5 * (x[2] + x[3])).norm();
 }
 
 // Area of the triangle (vertex-face) or of the parallelogram spanned by the two edges (edge-edge: zero when parallel).
-double primitive_area(PairType type, const std::array<Eigen::Vector3d, 4>& x) {
-  if (type == PairType::VertexFace) return 0.5 * (x[2] - x[1]).cross(x[3] - x[1]).norm();
+double primitive_area(PairKind type, const std::array<Eigen::Vector3d, 4>& x) {
+  if (type == PairKind::VertexFace) return 0.5 * (x[2] - x[1]).cross(x[3] - x[1]).norm();
   return (x[1] - x[0]).cross(x[3] - x[2]).norm();
 }
 
-double pair_size(const PairGeometry& pair) {
+double pair_size(const ccd::CcdQuery& pair) {
   Eigen::Vector3d lo = pair.start[0], hi = pair.start[0];
   for (int k = 0; k < 4; ++k) {
     lo = lo.cwiseMin(pair.start[k]).cwiseMin(pair.end[k]);
@@ -90,7 +90,7 @@ double pair_size(const PairGeometry& pair) {
 
 }  // namespace
 
-const char* pair_type_name(PairType type) { return type == PairType::VertexFace ? "VF" : "EE"; }
+const char* pair_kind_name(PairKind kind) { return kind == PairKind::VertexFace ? "VF" : "EE"; }
 
 std::vector<std::string> pair_feature_names(const FeatureSettings& settings) {
   if (settings.count < 1 || settings.count > kMaxPairFeatures)
@@ -99,7 +99,7 @@ std::vector<std::string> pair_feature_names(const FeatureSettings& settings) {
   return std::vector<std::string>(kFeatureNames, kFeatureNames + settings.count);
 }
 
-void compute_pair_features(const PairGeometry& pair, const FeatureSettings& settings, double* out) {
+void compute_pair_features(const ccd::CcdQuery& pair, const FeatureSettings& settings, double* out) {
   double all[kMaxPairFeatures] = {};
   if (!detail::pair_coordinates_finite(pair)) {
     // Comparisons with NaN would turn into arbitrary margins: mark every feature invalid, the classifier keeps the pair.
@@ -136,11 +136,11 @@ void compute_pair_features(const PairGeometry& pair, const FeatureSettings& sett
     if (settings.count > 16) all[16] = primitive_area(pair.kind, pair.start) * length_scale * length_scale;
     if (settings.count > 17) all[17] = primitive_area(pair.kind, pair.end) * length_scale * length_scale;
   }
-  all[14] = pair.kind == PairType::EdgeEdge ? 1.0 : 0.0;
+  all[14] = pair.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
   std::copy(all, all + std::min(settings.count, kMaxPairFeatures), out);
 }
 
-void compute_pair_features(const PairGeometry* pairs, std::size_t count, const FeatureSettings& settings,
+void compute_pair_features(const ccd::CcdQuery* pairs, std::size_t count, const FeatureSettings& settings,
                            PairFeatureBatch& batch) {
   const std::size_t features = std::min(settings.count, kMaxPairFeatures);
   batch.resize(count, features);

@@ -17,9 +17,9 @@ double symmetric_unit(unsigned long long& state) {
 
 }  // namespace
 
-PairGeometry random_pair(unsigned long long& state, double motion) {
-  PairGeometry pair;
-  pair.kind = split_mix64_next(state) % 2 ? PairType::EdgeEdge : PairType::VertexFace;
+ccd::CcdQuery random_pair(unsigned long long& state, double motion) {
+  ccd::CcdQuery pair;
+  pair.kind = split_mix64_next(state) % 2 ? PairKind::EdgeEdge : PairKind::VertexFace;
   const double scale = std::pow(10.0, 2.0 * symmetric_unit(state));
   Eigen::Vector3d offset;
   for (int a = 0; a < 3; ++a) offset[a] = 100.0 * symmetric_unit(state);
@@ -41,7 +41,7 @@ PairDataset make_random_pair_dataset(const RandomPairSettings& settings) {
   ccd::CcdSettings exact;  // thickness 0
   exact.decide_exactly = true;
   for (std::size_t i = 0; i < settings.rows; ++i) {
-    const PairGeometry pair = random_pair(state, settings.motion);
+    const ccd::CcdQuery pair = random_pair(state, settings.motion);
     compute_pair_features(pair, settings.features, features.data());
     PairRow row;
     row.features = features.data();

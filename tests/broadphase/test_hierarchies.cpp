@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "broadphase_scenes.hpp"
+#include "clothcd/broadphase/brute_force_candidates.hpp"
 #include "clothcd/broadphase/candidates.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "clothcd/simd_level.hpp"

@@ -227,9 +227,9 @@ TEST_CASE("block projection filter: the Normals pass and the AfterNormals pass t
   for (const double thickness : {0.0, 0.004}) {
     const ccd::CcdSettings settings{thickness};
     for (int b = 0; b < 200; ++b) {
-      ccd::detail::QueryBlock block;
+      ccd::PairLanes block;
       block.kind = maker.kind();
-      block.count = 1 + b % ccd::detail::QueryBlock::kLanes;
+      block.count = 1 + b % ccd::PairLanes::kLanes;
       for (int lane = 0; lane < block.count; ++lane) {
         block.set(lane, lane % 3 == 0 ? maker.degenerate_pair(block.kind)
                         : lane % 3 == 1 ? maker.resting_pair(block.kind, thickness * maker.uniform(0.5, 3.0) + 1e-3)
@@ -237,8 +237,8 @@ TEST_CASE("block projection filter: the Normals pass and the AfterNormals pass t
       }
       block.pad_unused();
       for (const clothcd::SimdLevel isa : clothcd::cpu_simd_levels()) {
-        std::uint8_t all[ccd::detail::QueryBlock::kLanes], first[ccd::detail::QueryBlock::kLanes],
-            second[ccd::detail::QueryBlock::kLanes];
+        std::uint8_t all[ccd::PairLanes::kLanes], first[ccd::PairLanes::kLanes],
+            second[ccd::PairLanes::kLanes];
         ccd::detail::projection_filter_block(block, settings, normals, all, isa, BlockPass::All);
         ccd::detail::projection_filter_block(block, settings, normals, first, isa, BlockPass::Normals);
         ccd::detail::projection_filter_block(block, settings, normals, second, isa, BlockPass::AfterNormals);

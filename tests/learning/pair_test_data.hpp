@@ -16,13 +16,13 @@
 namespace clothcd::learning::test {
 
 /// Random pair in a random frame (the library's generator, seeded from `rng`).
-inline PairGeometry random_pair(std::mt19937_64& rng) {
+inline ccd::CcdQuery random_pair(std::mt19937_64& rng) {
   unsigned long long state = rng();
   return clothcd::learning::random_pair(state, 1.5);
 }
 
 /// D(t) = (x1 - x0) x (x2 - x0) . (x3 - x0) at time t.
-inline double coplanarity(const PairGeometry& pair, double t) {
+inline double coplanarity(const ccd::CcdQuery& pair, double t) {
   auto x = [&](int k) {
     return Eigen::Vector3d((1.0 - t) * pair.start[static_cast<std::size_t>(k)] + t * pair.end[static_cast<std::size_t>(k)]);
   };
@@ -30,7 +30,7 @@ inline double coplanarity(const PairGeometry& pair, double t) {
 }
 
 /// D'(t) by the product rule.
-inline double coplanarity_derivative(const PairGeometry& pair, double t) {
+inline double coplanarity_derivative(const ccd::CcdQuery& pair, double t) {
   auto x = [&](int k) {
     return Eigen::Vector3d((1.0 - t) * pair.start[static_cast<std::size_t>(k)] + t * pair.end[static_cast<std::size_t>(k)]);
   };
@@ -42,7 +42,7 @@ inline double coplanarity_derivative(const PairGeometry& pair, double t) {
 
 /// True when the algebraic filter removes the pair: the Bernstein coefficients D(0), D(0) + D'(0)/3, D(1) - D'(1)/3,
 /// D(1) all have one strict sign.
-inline bool algebraic_filter_removes(const PairGeometry& pair) {
+inline bool algebraic_filter_removes(const ccd::CcdQuery& pair) {
   const double b[4] = {coplanarity(pair, 0.0), coplanarity(pair, 0.0) + coplanarity_derivative(pair, 0.0) / 3.0,
                        coplanarity(pair, 1.0) - coplanarity_derivative(pair, 1.0) / 3.0, coplanarity(pair, 1.0)};
   bool positive = true, negative = true;
@@ -51,14 +51,14 @@ inline bool algebraic_filter_removes(const PairGeometry& pair) {
 }
 
 /// True when the projection filter (eqs. 8-10) removes the pair along one of the paper's five directions.
-inline bool projection_filter_removes(const PairGeometry& pair) {
+inline bool projection_filter_removes(const ccd::CcdQuery& pair) {
   const double r2 = std::sqrt(2.0) / 2.0, r3 = std::sqrt(3.0) / 3.0;
   const Eigen::Vector3d directions[5] = {{1, 0, 0}, {r2, r2, 0}, {r2, 0, r2}, {0, r2, r2}, {r3, r3, r3}};
   for (const Eigen::Vector3d& s : directions) {
     bool positive = true, negative = true;
     for (const auto* x : {&pair.start, &pair.end}) {
       const auto& p = *x;
-      if (pair.kind == PairType::VertexFace) {
+      if (pair.kind == PairKind::VertexFace) {
         for (int k = 1; k < 4; ++k) {
           const double z = (p[0] - p[static_cast<std::size_t>(k)]).dot(s);
           positive &= z > 0.0, negative &= z < 0.0;
@@ -77,10 +77,10 @@ inline bool projection_filter_removes(const PairGeometry& pair) {
 }
 
 /// The paper's label, from the CCD stage's own filters: 0 when the combined filters remove the pair.
-inline int filter_label(const PairGeometry& pair) { return ccd::combined_filters_cull(pair) ? 0 : 1; }
+inline int filter_label(const ccd::CcdQuery& pair) { return ccd::combined_filters_cull(pair) ? 0 : 1; }
 
 /// The exact label from the CCD stage's safe narrow phase: 1 when the pair collides during the step.
-inline int exact_label(const PairGeometry& pair) {
+inline int exact_label(const ccd::CcdQuery& pair) {
   ccd::CcdSettings exact;
   exact.decide_exactly = true;
   return ccd::continuous_collision(pair, exact).hit ? 1 : 0;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/brute_force_candidates.hpp"
 #include "clothcd/broadphase/swept_boxes.hpp"
 #include "clothcd/broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"

@@ -99,11 +99,4 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats = nullptr);
 
-/// The reference: the same pairs as find_self_candidates by testing every vertex against every face and every edge
-/// against every edge (quadratic; for tests).
-void brute_force_self_candidates(const BodyView& body, CandidateSet& out);
-
-/// The reference for find_pair_candidates (quadratic; for tests).
-void brute_force_pair_candidates(const BodyView& a, const BodyView& b, CandidateSet& out);
-
 }  // namespace clothcd::broadphase

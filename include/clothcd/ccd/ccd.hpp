@@ -92,9 +92,10 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 /// Expects finite coordinates (see validate_query); non-finite input is reported as a ConservativeHit at toi 0.
 [[nodiscard]] CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings = {});
 
-/// The narrow phase for a pair that a culling filter has already examined (a block pipeline filters first): /// the same result as continuous_collision(query, settings), for a query that `applied` (run with the same settings) did
-/// not cull: the non-penetration and projection tests `applied` covers are not run again (both are pure functions of
-/// the query, so skipping them cannot change the answer). CcdFilter::None runs everything.
+/// The narrow phase for a pair that a culling filter has already examined (a block pipeline filters first): the same
+/// result as continuous_collision(query, settings), for a query that `applied` (run with the same settings) did not
+/// cull: the non-penetration and projection tests `applied` covers are not run again (both are pure functions of the
+/// query, so skipping them cannot change the answer). CcdFilter::None runs everything.
 [[nodiscard]] CcdResult continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings,
                                                           CcdFilter applied);
 

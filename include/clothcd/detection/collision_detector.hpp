@@ -23,7 +23,7 @@ enum class CullingMode {
   None,            ///< Every candidate goes to the exact CCD.
   NonPenetration,  ///< The algebraic (Bernstein) non-penetration filter.
   Projection,      ///< The spatial linear projection filter.
-  Filters,         ///< Both filters, cheaper first.
+  Filters,         ///< Both filters, cheaper first: the CCD stage's ccd::CcdFilter::Combined.
   /// A culler in front of the filters, given in DetectorSettings::culler (the learned pair network:
   /// learning::load_network_culler; see detection/pair_culler.hpp): Keep goes to the exact CCD, Check and Drop through
   /// the combined filters as Filters runs them (projection_normals included); a Drop the filters do not confirm goes
@@ -44,8 +44,7 @@ struct DetectorSettings {
   /// learning::load_network_culler. Shared: several detectors may hold the same culler (it is only read).
   std::shared_ptr<const PairCuller> culler;
   /// Triangles per hierarchy leaf (>= 1; median splits make leaves of between half of it and it). 32 since the leaf
-  /// tests take eight primitives at a time (cloth C on the human, cachegrind over 30 frames of whole detection:
-  /// 1.28G instructions and 4.2M mispredicted branches against 1.32G and 4.8M with 16, 1.29G and 4.7M with 40).
+  /// tests take eight primitives at a time (the measurement is in the benchmark report's speed targets section).
   int max_leaf_faces = 32;
   double rebuild_ratio = 2.0;   ///< Hierarchy rebuild rule, see broadphase::BvhSettings::rebuild_ratio.
   bool parallel = true;         ///< Use TBB threads (results are identical and in the same order either way).

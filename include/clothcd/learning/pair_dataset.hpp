@@ -23,7 +23,7 @@ struct PairRow {
   const double* features = nullptr;  ///< The feature vector (finite values).
   int filter_label = 1;              ///< 0 when the combined algebraic + projection filters remove the pair, else 1.
   int exact_label = 1;               ///< 1 when the exact CCD finds a collision in the step, else 0.
-  PairType type = PairType::VertexFace;
+  PairKind type = PairKind::VertexFace;
   std::string scene;                 ///< Free text naming the scene the pair came from (no comma, quote or newline).
   Split split = Split::Training;     ///< Usually set afterwards by assign_splits.
 };
@@ -34,7 +34,7 @@ struct PairDataset {
   std::vector<double> features;            ///< row_count() x feature_names.size(), row-major.
   std::vector<int> filter_label;           ///< Per row, 0 or 1 (see PairRow).
   std::vector<int> exact_label;            ///< Per row, 0 or 1 (see PairRow).
-  std::vector<PairType> type;              ///< Per row.
+  std::vector<PairKind> type;              ///< Per row.
   std::vector<std::string> scene;          ///< Per row.
   std::vector<Split> split;                ///< Per row.
 

@@ -18,14 +18,8 @@
 
 namespace clothcd::learning {
 
-/// Vertex-face (point 0 against triangle 1, 2, 3) or edge-edge (edge 0-1 against edge 2-3): the CCD stage's PairKind.
-using PairType = PairKind;
-
-/// "VF" or "EE".
-[[nodiscard]] const char* pair_type_name(PairType type);
-
-/// The eight positions of a candidate pair over one time step (linear motion from start to end): the CCD query itself.
-using PairGeometry = ccd::CcdQuery;
+/// "VF" (vertex-face) or "EE" (edge-edge). A pair's geometry is the CCD query of its eight positions (ccd::CcdQuery).
+[[nodiscard]] const char* pair_kind_name(PairKind kind);
 
 /// Number of features defined; FeatureSettings::count picks the first `count` of them.
 inline constexpr std::size_t kMaxPairFeatures = 18;
@@ -43,7 +37,7 @@ struct FeatureSettings {
 
 /// Writes the first settings.count features of one pair to `out` (settings.count values). A pair of zero size (all
 /// eight positions equal) gives all zeros; non-finite positions give non-finite features.
-void compute_pair_features(const PairGeometry& pair, const FeatureSettings& settings, double* out);
+void compute_pair_features(const ccd::CcdQuery& pair, const FeatureSettings& settings, double* out);
 
 /// Features of many pairs, structure of arrays: feature f of pair i at values[f * rows + i].
 struct PairFeatureBatch {
@@ -64,7 +58,7 @@ struct PairFeatureBatch {
 };
 
 /// Computes the features of `count` pairs into `batch` (resized to count x settings.count).
-void compute_pair_features(const PairGeometry* pairs, std::size_t count, const FeatureSettings& settings,
+void compute_pair_features(const ccd::CcdQuery* pairs, std::size_t count, const FeatureSettings& settings,
                            PairFeatureBatch& batch);
 
 }  // namespace clothcd::learning

@@ -21,7 +21,7 @@ struct RandomPairSettings {
 };
 
 /// One random pair from the generator state `state` (advanced).
-[[nodiscard]] PairGeometry random_pair(unsigned long long& state, double motion);
+[[nodiscard]] ccd::CcdQuery random_pair(unsigned long long& state, double motion);
 
 /// A labelled, split data set of random pairs (scene "random-pairs").
 [[nodiscard]] PairDataset make_random_pair_dataset(const RandomPairSettings& settings);

@@ -14,6 +14,8 @@
 #include "learning/pair_test_data.hpp"
 
 using namespace clothcd::learning;
+using clothcd::PairKind;
+namespace ccd = clothcd::ccd;
 using clothcd::cpu_simd_levels;
 using clothcd::simd_level_name;
 using clothcd::SimdLevel;
@@ -21,16 +23,16 @@ using clothcd::SimdLevel;
 namespace {
 
 // Degenerate pairs: a point, a tiny pair, a huge one, coplanar and parallel primitives, non-finite coordinates.
-std::vector<PairGeometry> degenerate_pairs() {
-  std::vector<PairGeometry> pairs;
+std::vector<ccd::CcdQuery> degenerate_pairs() {
+  std::vector<ccd::CcdQuery> pairs;
   std::mt19937_64 rng(5);
-  for (const PairType kind : {PairType::VertexFace, PairType::EdgeEdge}) {
-    PairGeometry point;
+  for (const PairKind kind : {PairKind::VertexFace, PairKind::EdgeEdge}) {
+    ccd::CcdQuery point;
     point.kind = kind;
     for (std::size_t k = 0; k < 4; ++k) point.start[k] = point.end[k] = Eigen::Vector3d(1.0, -2.0, 3.0);
     pairs.push_back(point);
     for (const double scale : {1e-300, 1e-150, 1e150, 1e300}) {
-      PairGeometry p = test::random_pair(rng);
+      ccd::CcdQuery p = test::random_pair(rng);
       p.kind = kind;
       for (std::size_t k = 0; k < 4; ++k) {
         p.start[k] *= scale;
@@ -38,25 +40,25 @@ std::vector<PairGeometry> degenerate_pairs() {
       }
       pairs.push_back(p);
     }
-    PairGeometry flat = test::random_pair(rng);  // everything in the plane z = 0 for the whole step
+    ccd::CcdQuery flat = test::random_pair(rng);  // everything in the plane z = 0 for the whole step
     flat.kind = kind;
     for (std::size_t k = 0; k < 4; ++k) flat.start[k].z() = flat.end[k].z() = 0.0;
     pairs.push_back(flat);
-    PairGeometry still = test::random_pair(rng);  // no motion
+    ccd::CcdQuery still = test::random_pair(rng);  // no motion
     still.kind = kind;
     still.end = still.start;
     pairs.push_back(still);
-    PairGeometry parallel = still;  // edge 2-3 a copy of edge 0-1 moved along x
+    ccd::CcdQuery parallel = still;  // edge 2-3 a copy of edge 0-1 moved along x
     for (std::size_t k = 2; k < 4; ++k) parallel.start[k] = parallel.end[k] = still.start[k - 2] + Eigen::Vector3d(0.5, 0, 0);
     pairs.push_back(parallel);
     for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
                              -std::numeric_limits<double>::infinity()}) {
-      PairGeometry p = test::random_pair(rng);
+      ccd::CcdQuery p = test::random_pair(rng);
       p.kind = kind;
       p.end[3].y() = bad;
       pairs.push_back(p);
     }
-    PairGeometry overflow = test::random_pair(rng);  // finite coordinates whose sum overflows
+    ccd::CcdQuery overflow = test::random_pair(rng);  // finite coordinates whose sum overflows
     overflow.kind = kind;
     for (std::size_t k = 0; k < 4; ++k) overflow.start[k].x() = overflow.end[k].x() = 1.5e308;
     pairs.push_back(overflow);
@@ -66,7 +68,7 @@ std::vector<PairGeometry> degenerate_pairs() {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
 
-void check_against_per_pair(const std::vector<PairGeometry>& pairs, std::size_t features) {
+void check_against_per_pair(const std::vector<ccd::CcdQuery>& pairs, std::size_t features) {
   for (const SimdLevel level : cpu_simd_levels()) {
     PairFeatureBatch batch;
     batch.resize(pairs.size(), features);
@@ -86,7 +88,7 @@ void check_against_per_pair(const std::vector<PairGeometry>& pairs, std::size_t 
 
 TEST_CASE("batch features equal the per-pair features bit for bit", "[learning][features]") {
   std::mt19937_64 rng(41);
-  std::vector<PairGeometry> pairs;
+  std::vector<ccd::CcdQuery> pairs;
   for (int i = 0; i < 3001; ++i) pairs.push_back(test::random_pair(rng));  // not a multiple of the block size
   for (const std::size_t features : {std::size_t{15}, std::size_t{1}, std::size_t{9}, kMaxPairFeatures}) {
     check_against_per_pair(pairs, features);
