@@ -5,6 +5,7 @@ candidates, or on a list of single queries.
 
 Usage: ipctk_narrow_phase.py step SCENE.bin --hits HITS.txt [--per-pair] [--repeats R]
        ipctk_narrow_phase.py queries QUERIES.bin --hits HITS.txt [--repeats R]
+       ipctk_narrow_phase.py --version
 
 One thread (`ipctk.set_num_threads(1)`). Prints one line of `name=value` words.
 
@@ -135,6 +136,7 @@ def main():
     parser.add_argument("--hits", required=True)
     parser.add_argument("--per-pair", action="store_true")
     parser.add_argument("--repeats", type=int, default=1)
+    parser.add_argument("--version", action="version", version=f"ipctk {ipctk.__version__}")
     args = parser.parse_args()
     if args.repeats < 1:
         parser.error("need --repeats >= 1")
