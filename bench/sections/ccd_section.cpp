@@ -1,20 +1,26 @@
 // Section "ccd": the public CCD benchmark's handcrafted queries (Wang et al. 2021, MIT licence; ../shared beside the
 // checkout or --ccd-queries): false negatives and positives against the ground truth, culled fraction and time per
-// query for every culling mode, the pair network behind the detector's safety rule included.
+// query for every culling mode, the pair network behind the detector's safety rule included, approximate and exact;
+// beside the IPC Toolkit's Tight-Inclusion CCD (the `ipctk` wheel) on the same queries.
 #include <algorithm>
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "../suite/bench_section.hpp"
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
+#include "../suite/ipctk_peer.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
 #include "clothcd/learning/network_culler.hpp"
 
 namespace clothcd::bench {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct ModeRow {
   std::string kind, mode;
@@ -40,7 +46,7 @@ ModeRow measure(const std::vector<ccd::QueryRecord>& records, const std::string&
   ModeRow row{kind, mode, queries.size()};
   row.exact = exact;
   ccd::CcdSettings settings;  // thickness 0
-  settings.decide_exactly = exact;
+  settings.decide_exactly = exact;  // explicit both ways: the rows do not follow the library's default
   std::vector<std::uint8_t> keep;
   std::vector<ccd::CcdResult> results;
   double best_total = 1e300, best_cull = 1e300;
@@ -77,10 +83,81 @@ ModeRow measure(const std::vector<ccd::QueryRecord>& records, const std::string&
   return row;
 }
 
+// The peer's answers on one kind of queries, against the ground truth.
+struct PeerRow {
+  std::string kind;
+  std::size_t queries = 0, false_negatives = 0, false_positives = 0;
+  PeerQueries run;
+};
+
+PeerRow peer_row(const std::vector<ccd::QueryRecord>& records, const std::string& kind, const fs::path& python,
+                 const fs::path& script, const fs::path& scratch, int repeat) {
+  std::vector<ccd::CcdQuery> queries;
+  for (const auto& record : records) queries.push_back(record.query);
+  PeerRow row;
+  row.kind = kind;
+  row.queries = queries.size();
+  row.run = run_peer_queries(python, script, queries, scratch, repeat);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    row.false_negatives += records[i].truth == 1 && !row.run.hit[i] ? 1 : 0;
+    row.false_positives += records[i].truth == 0 && row.run.hit[i] ? 1 : 0;
+  }
+  return row;
+}
+
 std::string absent_report(const std::string& why) {
   return "## CCD on the public benchmark's handcrafted queries\n\n" + why +
          " This section measured nothing; pass `--ccd-queries DIR` (a folder of the benchmark's vertex-face/ and "
          "edge-edge/ CSV folders, https://github.com/Continuous-Collision-Detection/Sample-Queries) to run it.\n";
+}
+
+// The mode row of `kind` with the combined filter, exact or not.
+const ModeRow* combined_row(const std::vector<ModeRow>& rows, const std::string& kind, bool exact) {
+  for (const ModeRow& r : rows)
+    if (r.kind == kind && r.mode == "combined" && r.exact == exact) return &r;
+  return nullptr;
+}
+
+// The peer's table beside ours, with the ratios.
+std::string peer_report(const std::vector<ModeRow>& rows, const std::vector<PeerRow>& peer_rows,
+                        const std::string& peer_status, int repeat) {
+  std::string md = "\n### The peer: IPC Toolkit's Tight-Inclusion CCD on the same queries\n\n";
+  if (peer_rows.empty()) return md + "Not run: " + peer_status + ".\n";
+  md += peer_status + " `TightInclusionCCD()` with its defaults (tolerance 1e-6, 1e7 iterations, conservative "
+        "rescaling 0.8: a first pass reports a pair that comes within min(0.2 x its initial distance, 1e-4)), minimum "
+        "distance 0, `point_triangle_ccd` / `edge_edge_ccd` called once per query from Python, best of " +
+        std::to_string(repeat) + " calls each (bench/peers/ipctk_narrow_phase.py), on the same double coordinates as "
+        "ours. *Call*: one call's wall time from Python; *overhead*: the call of `point_triangle_aabb_ccd` / "
+        "`edge_edge_aabb_ccd` on the same eight points (the same argument conversion, a box test as its only work); "
+        "*net* = call - overhead, the peer's own time. Ours: the batch time per query of the rows above (one thread, "
+        "no call overhead). Ratios are ours / peer.\n\n";
+  std::vector<std::vector<std::string>> table;
+  for (const PeerRow& p : peer_rows) {
+    const ModeRow* approximate = combined_row(rows, p.kind, false);
+    const ModeRow* exact = combined_row(rows, p.kind, true);
+    const double net_mean = p.run.mean_call_ns - p.run.mean_overhead_ns;
+    const double net_median = p.run.median_call_ns - p.run.median_overhead_ns;
+    table.push_back(
+        {p.kind + " (" + std::to_string(p.queries) + ")", std::to_string(p.false_negatives),
+         std::to_string(p.false_positives),
+         approximate && exact ? std::to_string(approximate->false_positives) + " / " +
+                                    std::to_string(exact->false_positives)
+                              : "-",
+         number(p.run.mean_call_ns, 4) + " / " + number(p.run.median_call_ns, 4),
+         number(p.run.mean_overhead_ns, 3) + " / " + number(p.run.median_overhead_ns, 3),
+         number(net_mean, 4) + " / " + number(net_median, 4),
+         approximate && exact ? number(approximate->ns_per_query, 4) + " / " + number(exact->ns_per_query, 4) : "-",
+         approximate && exact ? fixed(approximate->ns_per_query / net_mean, 3) + " / " +
+                                    fixed(exact->ns_per_query / net_mean, 3)
+                              : "-",
+         approximate && exact ? fixed(exact->ns_per_query / approximate->ns_per_query, 2) : "-"});
+  }
+  md += markdown_table({"kind (queries)", "peer FN", "peer FP", "ours FP, combined approximate / exact",
+                        "peer call ns, mean / median", "call overhead ns, mean / median", "peer net ns, mean / median",
+                        "ours ns/query, combined approximate / exact", "ours / peer net mean, approximate / exact",
+                        "ours exact / approximate"},
+                       table);
+  return md;
 }
 
 SectionReport run_ccd(const BenchContext& context) {
@@ -100,6 +177,12 @@ SectionReport run_ccd(const BenchContext& context) {
                    " behind the detector's safety rule (its drops are confirmed by the combined filters).";
   }
   const int repeat = context.quick ? 1 : 3;
+  std::string peer_status = "not run (outside a checkout: the peer's script is in bench/peers)";
+  std::optional<fs::path> python;
+  const fs::path peer_script = context.repository / "bench" / "peers" / "ipctk_narrow_phase.py";
+  if (!context.repository.empty()) python = peer_python(context, peer_script, peer_status);
+  const ScratchFolder scratch("ccd");
+  std::vector<PeerRow> peer_rows;
   std::vector<ModeRow> rows;
   std::string normals_note;
   for (const PairKind kind : {PairKind::VertexFace, PairKind::EdgeEdge}) {
@@ -114,6 +197,10 @@ SectionReport run_ccd(const BenchContext& context) {
       rows.push_back(measure(records, name, mode, false, repeat, nullptr));
     if (network) rows.push_back(measure(records, name, "network", false, repeat, network.get()));
     rows.push_back(measure(records, name, "combined", true, repeat, nullptr));
+    if (python) {
+      context.progress(name + ": the peer's Tight-Inclusion CCD, one query at a time");
+      peer_rows.push_back(peer_row(records, name, *python, peer_script, scratch.path(), repeat));
+    }
     std::size_t with_normals = 0;
     for (const auto& record : records)
       with_normals += ccd::projection_filter_culls(record.query, {}, ccd::ProjectionFilterOptions{true}) ? 1 : 0;
@@ -139,7 +226,7 @@ SectionReport run_ccd(const BenchContext& context) {
              std::to_string(r.conservative), std::to_string(r.fallbacks), number(r.ns_per_query, 6),
              number(r.cull_ns_per_query, 5), r.median_ns < 0 ? "" : number(r.median_ns, 4)});
     table.push_back({r.kind + " (" + std::to_string(r.queries) + ", " + std::to_string(r.colliding) + " colliding)",
-                     r.mode + (r.exact ? ", exact" : ""), std::to_string(r.false_negatives),
+                     r.mode + (r.exact ? ", exact" : ", approximate"), std::to_string(r.false_negatives),
                      std::to_string(r.false_positives), fixed(100 * culled, 1) + "%", std::to_string(r.conservative),
                      std::to_string(r.fallbacks), number(r.ns_per_query, 4),
                      r.median_ns < 0 ? "-" : number(r.median_ns, 3), number(r.cull_ns_per_query, 3)});
@@ -154,24 +241,35 @@ SectionReport run_ccd(const BenchContext& context) {
         " queries, ground truth in column 7). Time: whole batch (culling, then the safe narrow phase on the kept "
         "queries), best of " + std::to_string(repeat) + ", one thread; median: one query at a time. " + network_note +
         "\n\n";
-  md += markdown_table({"kind", "culling", "FN", "FP", "culled", "conservative", "exact fallbacks", "mean ns/query",
+  md += markdown_table({"kind", "culling, decisions", "FN", "FP (false reports)", "culled", "conservative", "exact fallbacks", "mean ns/query",
                         "median ns", "culling ns/query"},
                        table);
   md += "\nFalse negatives over every mode: **" + std::to_string(misses) + "**" +
         (misses == 0 ? " (the safety rule holds)" : " (**a collision was missed**)") +
         ". Projection filter with the primitives' normals added to eq. (10)'s five directions culls " + normals_note +
-        "\n\nReference figures (the project's reference measurements on these queries; no CCD peer is packaged in "
-        "Debian, so none runs here): "
-        "Tight-Inclusion at tolerance 1e-6 has 85 (VF) / 137 (EE) false positives at 1.6 / 4.9 ms per query; plain "
+        "\n\nReference figures (the project's reference measurements on these queries; the IPC Toolkit's wheel runs "
+        "below): Tight-Inclusion alone at tolerance 1e-6 has 85 (VF) / 137 (EE) false positives at 1.6 / 4.9 ms per "
+        "query; plain "
         "double cubic solving takes 0.13 us per query but misses 5 (VF) / 3 (EE) collisions; the Bernstein filter "
         "alone culls 74% (VF) / 86% (EE). The paper's removal rates (Table 4: 34-39% non-penetration, 52-55% "
         "projection, 53-58% both, 52-57% network) were measured on its own simulation pairs, not on these queries: "
         "see the filters section for the comparable run. A few queries touch exactly (often at an irrational time) or "
-        "miss by about a rounding error: interval arithmetic cannot decide them, so by default they are reported as "
-        "*conservative* hits (never a miss; the false positives of the rows without *exact*). The *exact* row decides "
-        "them with the exact floating-point expansion tier instead (`--exact`, ccd::CcdSettings::decide_exactly), "
-        "which dominates its mean time; *exact fallbacks* counts those that needed GMP rational arithmetic.\n\n";
+        "miss by about a rounding error: interval arithmetic cannot decide them, so the *approximate* rows report "
+        "them as *conservative* hits (never a miss; their false positives). The *exact* rows decide them with the "
+        "exact floating-point expansion tier instead (ccd::CcdSettings::decide_exactly), which dominates its mean "
+        "time; *exact fallbacks* counts those that needed GMP rational arithmetic.\n\n";
   md += "![Culled fraction per mode](ccd_culling.svg)\n";
+  md += peer_report(rows, peer_rows, peer_status, repeat);
+  if (!peer_rows.empty()) {
+    CsvFile peer_csv(context.out_dir / "ccd_peer.csv",
+                     "kind,queries,false_negatives,false_positives,mean_call_ns,median_call_ns,mean_overhead_ns,"
+                     "median_overhead_ns");
+    for (const PeerRow& p : peer_rows)
+      peer_csv.row({p.kind, std::to_string(p.queries), std::to_string(p.false_negatives),
+                    std::to_string(p.false_positives), number(p.run.mean_call_ns, 6), number(p.run.median_call_ns, 6),
+                    number(p.run.mean_overhead_ns, 6), number(p.run.median_overhead_ns, 6)});
+    return {md, {"ccd.csv", "ccd_peer.csv", "ccd_culling.svg"}};
+  }
   return {md, {"ccd.csv", "ccd_culling.svg"}};
 }
 

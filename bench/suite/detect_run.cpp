@@ -90,12 +90,39 @@ std::vector<Entry> entries(const Json& root, const std::string& list, const std:
   return out;
 }
 
+// `help` names the option `flag` (followed by a space, a comma, an equals sign or the line's end, so that `--exact`
+// does not match `--exact-something`).
+bool lists_option(const std::string& help, const std::string& flag) {
+  for (std::size_t at = help.find(flag); at != std::string::npos; at = help.find(flag, at + 1)) {
+    const std::size_t after = at + flag.size();
+    const bool starts = at == 0 || help[at - 1] == ' ' || help[at - 1] == ',' || help[at - 1] == '\n';
+    if (starts && (after == help.size() || std::strchr(" ,=\n", help[after]) != nullptr)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
+std::vector<std::string> detect_mode_flags_from_help(const std::string& help, DetectMode mode) {
+  const std::string flag = mode == DetectMode::Approximate ? "--approximate" : "--exact";
+  if (lists_option(help, flag)) return {flag};
+  return {};
+}
+
+std::vector<std::string> detect_mode_flags(const std::filesystem::path& clothcd, DetectMode mode) {
+  const ChildRun child = run_child({clothcd.string(), "detect", "--help"}, 1);
+  if (child.exit_code != 0)
+    throw std::runtime_error(clothcd.string() + " detect --help failed (exit " + std::to_string(child.exit_code) +
+                             "): " + child.output);
+  return detect_mode_flags_from_help(child.output, mode);
+}
+
 DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
-                     const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus) {
-  const ChildRun child = run_child({clothcd.string(), "detect", t0.string(), t1.string(), "--out", json_out.string()},
-                                   cpus);
+                     const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus,
+                     const std::vector<std::string>& flags) {
+  std::vector<std::string> arguments{clothcd.string(), "detect", t0.string(), t1.string(), "--out", json_out.string()};
+  arguments.insert(arguments.end(), flags.begin(), flags.end());
+  const ChildRun child = run_child(arguments, cpus);
   if (child.exit_code != 0)
     throw std::runtime_error("clothcd detect " + t0.string() + " failed (exit " + std::to_string(child.exit_code) +
                              "): " + child.output);
@@ -123,6 +150,8 @@ DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem
     digest.add(&e.conservative, sizeof e.conservative);
     digest.add(&toi_bits, sizeof toi_bits);
     run.collisions.push_back(e.key);
+    run.conservative += e.conservative ? 1 : 0;
+    run.earliest_toi = std::min(run.earliest_toi, e.toi);
   }
   run.digest = digest.hex();
   return run;

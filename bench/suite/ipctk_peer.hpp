@@ -1,0 +1,70 @@
+#pragma once
+/// @file
+/// The IPC Toolkit peer (the `ipctk` wheel from PyPI) as the benchmarks run it: its Python environment, and its
+/// Tight-Inclusion narrow phase (bench/peers/ipctk_narrow_phase.py) on a step's own LBVH candidates or on single
+/// queries, read back into the bench's collision keys.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_section.hpp"
+#include "clothcd/ccd/ccd.hpp"
+#include "detect_run.hpp"
+
+namespace clothcd::bench {
+
+/// The Python of the benchmarks' environment (.cache/bench-venv of the repository) when it runs `script --version`
+/// (which imports ipctk), creating the environment with bench/peers/setup-ipctk.sh first in a full run; else nothing.
+/// `status` gets the peer's version, or why there is none.
+[[nodiscard]] std::optional<std::filesystem::path> peer_python(const BenchContext& context,
+                                                               const std::filesystem::path& script,
+                                                               std::string& status);
+
+/// The `name=value` words of a peer script's output line, values as numbers.
+[[nodiscard]] std::map<std::string, double> peer_values(const std::string& output);
+
+/// The peer's narrow phase on one step (see bench/peers/ipctk_narrow_phase.py for what each time covers).
+struct PeerNarrowPhase {
+  long candidates = 0;         ///< The peer's own LBVH candidates.
+  double stepsize_ms = 0;      ///< compute_collision_free_stepsize on every candidate (C++, one thread).
+  double stepsize = 1;         ///< Its result: the earliest toi found, times the peer's conservative rescaling.
+  bool per_pair = false;       ///< The candidates were also decided one at a time (the fields below are set).
+  std::vector<CollisionKey> hits;  ///< The candidates its per-pair CCD reports as colliding, sorted.
+  double earliest_toi = 1;     ///< The smallest toi of those.
+  double loop_ms = 0;          ///< The per-pair loop from Python, call overhead included.
+  long clean_candidates = 0;   ///< The candidates without its hits.
+  double clean_ms = 0;         ///< is_step_collision_free on those (C++, one thread, no early exit).
+};
+
+/// Runs `script step scene_bin --hits hits_file [--per-pair] --repeats R` with `python` on one CPU. Throws
+/// std::runtime_error with its output when it fails.
+[[nodiscard]] PeerNarrowPhase run_peer_narrow_phase(const std::filesystem::path& python,
+                                                    const std::filesystem::path& script,
+                                                    const std::filesystem::path& scene_bin,
+                                                    const std::filesystem::path& hits_file, bool per_pair,
+                                                    int repeats);
+
+/// Reads the hits a per-pair run wrote (`vf VERTEX FACE TOI` / `ee A0 A1 B0 B1 TOI` lines) as sorted keys, and their
+/// smallest toi into `earliest_toi`. Throws std::runtime_error naming the file on a malformed line.
+[[nodiscard]] std::vector<CollisionKey> read_peer_hits(const std::filesystem::path& hits_file, double& earliest_toi);
+
+/// The peer's answers on single queries.
+struct PeerQueries {
+  std::vector<std::uint8_t> hit;    ///< Per query, 1 when reported colliding.
+  double median_call_ns = 0;        ///< One call from Python, median over the queries (best of the repeats each).
+  double mean_call_ns = 0;          ///< The same, mean.
+  double median_overhead_ns = 0;    ///< A bounding-box test's call on the same points: the call overhead, median.
+  double mean_overhead_ns = 0;      ///< The same, mean.
+};
+
+/// Writes `queries` (bench/peers/ipctk_narrow_phase.py's QUERIES.bin), runs `script queries` on them on one CPU and
+/// reads its answers. Throws std::runtime_error with its output when it fails.
+[[nodiscard]] PeerQueries run_peer_queries(const std::filesystem::path& python, const std::filesystem::path& script,
+                                           const std::vector<ccd::CcdQuery>& queries,
+                                           const std::filesystem::path& scratch, int repeats);
+
+}  // namespace clothcd::bench
