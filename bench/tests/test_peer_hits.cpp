@@ -20,7 +20,7 @@ TEST_CASE("peer hits: vertex-face and edge-edge lines become sorted keys with th
   CHECK(earliest == 0.25);
 }
 
-TEST_CASE("peer hits: an empty file has no hits and toi 1; a malformed line names the file and line") {
+TEST_CASE("peer hits: an empty file has no hits and toi 1, and a malformed line names the file and line") {
   const clothcd::bench::ScratchFolder scratch("peer-hits-test");
   const auto file = scratch.path() / "hits.txt";
   std::ofstream(file) << "";
