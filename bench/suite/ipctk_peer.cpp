@@ -35,6 +35,10 @@ double value(const std::map<std::string, double>& values, const std::string& nam
 
 std::optional<fs::path> peer_python(const BenchContext& context, const fs::path& script, std::string& status) {
   const fs::path venv = context.repository / ".cache" / "bench-venv", python = venv / "bin" / "python";
+  if (context.quick) {
+    status = "not run in a quick run (the peer's per-query calls alone take minutes)";
+    return std::nullopt;
+  }
   const auto works = [&] {
     if (access(python.c_str(), X_OK) != 0) return false;
     const ChildRun run = run_child({python.string(), script.string(), "--version"}, 1);
@@ -42,14 +46,12 @@ std::optional<fs::path> peer_python(const BenchContext& context, const fs::path&
     return run.exit_code == 0;
   };
   if (works()) return python;
-  if (!context.quick) {
-    context.progress("creating the peer's Python environment in " + venv.string() + " (pip install ipctk==1.6.1)");
-    const ChildRun setup =
-        run_child({"/usr/bin/env", "bash", (context.repository / "bench" / "peers" / "setup-ipctk.sh").string(),
-                   venv.string()}, 1);
-    if (setup.exit_code == 0 && works()) return python;
-  }
-  status = "peer not installed (no ipctk in " + venv.string() + (context.quick ? "; a full run creates it)" : ")");
+  context.progress("creating the peer's Python environment in " + venv.string() + " (pip install ipctk==1.6.1)");
+  const ChildRun setup =
+      run_child({"/usr/bin/env", "bash", (context.repository / "bench" / "peers" / "setup-ipctk.sh").string(),
+                 venv.string()}, 1);
+  if (setup.exit_code == 0 && works()) return python;
+  status = "peer not installed (no ipctk in " + venv.string() + ")";
   return std::nullopt;
 }
 

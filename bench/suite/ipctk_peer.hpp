@@ -18,7 +18,7 @@
 namespace clothcd::bench {
 
 /// The Python of the benchmarks' environment (.cache/bench-venv of the repository) when it runs `script --version`
-/// (which imports ipctk), creating the environment with bench/peers/setup-ipctk.sh first in a full run; else nothing.
+/// (which imports ipctk), creating the environment with bench/peers/setup-ipctk.sh first; nothing in a quick run.
 /// `status` gets the peer's version, or why there is none.
 [[nodiscard]] std::optional<std::filesystem::path> peer_python(const BenchContext& context,
                                                                const std::filesystem::path& script,
