@@ -147,8 +147,8 @@ std::string peer_report(const std::vector<ModeRow>& rows, const std::vector<Peer
          number(p.run.mean_overhead_ns, 3) + " / " + number(p.run.median_overhead_ns, 3),
          number(net_mean, 4) + " / " + number(net_median, 4),
          approximate && exact ? number(approximate->ns_per_query, 4) + " / " + number(exact->ns_per_query, 4) : "-",
-         approximate && exact ? fixed(approximate->ns_per_query / net_mean, 3) + " / " +
-                                    fixed(exact->ns_per_query / net_mean, 3)
+         approximate && exact ? number(approximate->ns_per_query / net_mean, 3) + " / " +
+                                    number(exact->ns_per_query / net_mean, 3)
                               : "-",
          approximate && exact ? fixed(exact->ns_per_query / approximate->ns_per_query, 2) : "-"});
   }
