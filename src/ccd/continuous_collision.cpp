@@ -50,13 +50,12 @@ using detail::Interval;
 // 12% above 8). Reporting the undecided queries as conservative hits instead, depths 2 / 4 / 6 / 8 leave 42 / 40 / 40 /
 // 39 false positives (VF) and 72 / 62 / 55 / 53 (EE) on those queries, the deeper ones 10-25% slower than depth 4.
 constexpr int kMaxDepth = 4;
-// Deciding exactly: pieces go on splitting below kMaxDepth, down to 2^-kMaxExactDepth of the step, while the query has
-// examined fewer than kDeepPieceBudget pieces below kMaxDepth. A piece that misses or touches by far more than a
+// Deciding exactly: pieces go on splitting below kMaxDepth while the query has examined fewer than kDeepPieceBudget
+// pieces below kMaxDepth (the approximate mode has no such budget). A piece that misses or touches by far more than a
 // rounding error is decided there at a few interval tests per level, instead of by the exact tiers (about 100k
 // instructions a query); what is left (an exact touch, a miss by a rounding error, coplanar motion) exhausts the budget
 // quickly and goes to them. (Rod-twist: 1,711 queries of 19k reach the exact tiers at depth 4, 183 with this budget;
 // budgets of 16 and 24 decide a few more there but cost more on cloth-funnel's exact touches.)
-constexpr int kMaxExactDepth = 40;
 constexpr int kDeepPieceBudget = 8;
 // A hit's time of impact is a lower bound proven within kToiTolerance of the earliest contact (else the exact tiers
 // give it); a conservative hit's is tightened by at most kToiBisections halvings of its piece.
@@ -243,8 +242,7 @@ void w_at(const Motion& motion, double t, PointSet& w) {
 
 struct Search {
   const Motion& motion;
-  int max_depth = kMaxDepth;  // pieces at this depth are not split
-  int deep_pieces_left = 0;   // pieces below kMaxDepth this query may still examine
+  int deep_pieces_left = 0;  // pieces below kMaxDepth this query may still examine
   double toi = 1.0;
 };
 
@@ -327,7 +325,7 @@ PieceOutcome search_exact_contact(Search& search, double t0, double t1, const Po
   const double mid = 0.5 * (t0 + t1);
   if (depth > kMaxDepth && common_strict_sign(bernstein) == 0 && --search.deep_pieces_left < 0)
     return PieceOutcome::Undecided;
-  const bool can_split = depth < search.max_depth && mid > t0 && mid < t1;
+  const bool can_split = (depth < kMaxDepth || search.deep_pieces_left > 0) && mid > t0 && mid < t1;
   // When both halves' boxes exclude the origin there is no contact in the piece, so the tests below could not find a
   // hit: they would clear the piece or split it into these halves, which clear at once. Either way the piece is clear,
   // without their cost. The whole step's own tests almost never decide, so there the halves come first; deeper, after
@@ -471,7 +469,7 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
     const DetParts parts = det_parts(x0, x1);
     if (!undecidable_end(start, dot(parts.a0, parts.bc00)) && !undecidable_end(end, dot(parts.a1, parts.bc11))) {
       const Motion motion = motion_of(start, end);
-      Search search{motion, decide_exactly ? kMaxExactDepth : kMaxDepth, kDeepPieceBudget, 1.0};
+      Search search{motion, decide_exactly ? kDeepPieceBudget : 0, 1.0};
       const PointSet boxes = piece_boxes(start, end);
       const PieceOutcome outcome =
           boxes_exclude_origin(boxes, 0.0)
