@@ -18,8 +18,11 @@
 //     bracket that cannot be proven that tight leaves the piece undecided.
 // Undecided pieces split on to depth 4, and with CcdSettings::decide_exactly deeper within a budget of pieces; a
 // query still undecided then goes to the exact expansion tier (expansion_collision.cpp), and what that cannot decide
-// to the exact rational reference, so no collision is ever missed and every hit is proven; so does, before any
-// subdivision, a possible exact touch at t = 0 or 1, which no piece ending there could decide. Without decide_exactly
+// to the exact rational reference, so no collision is ever missed and every hit is proven. A possible exact touch at
+// t = 0 or 1, which no piece ending there could decide, is settled before any subdivision by an exact test of that
+// end's positions: a touch at the start is the earliest contact, and one at the end the only one when a coordinate
+// separates W from the origin for every t < 1 (a collapsing cloth); other such queries go to the exact tiers (so a
+// degenerate step costs a few microseconds a pair, not the exact tiers' hundreds). Without decide_exactly
 // (the approximate mode) an undecided query is a conservative hit instead (toi: where D may first vanish, 0 for a
 // touch at the ends). With thickness h > 0 the projection filter runs first, then the Lipschitz-bounded distance
 // search of thickness_contact.cpp decides (no rational arithmetic).
@@ -218,6 +221,23 @@ PieceOutcome classify_projections(const PointSet& boxes, bool d_changes_sign) {
 bool undecidable_end(const PointSet& w, const Interval& d_at_end) {
   if (certain_sign(d_at_end) != 0) return false;
   return !boxes_exclude_origin(w, 0.0) && classify_projections(w, false) != PieceOutcome::Clear;
+}
+
+// True when the origin is certainly outside conv W(t) for every t in [0, 1): some coordinate is of one strict sign at
+// t = 0 and of that sign or zero at t = 1 for every point of W (start and end), so W(t), a convex combination with a
+// positive weight on W(0), keeps that strict sign before the end. A touch at the end then is the only possible contact:
+// a cloth collapsing to a point, an edge ending exactly on a face, which no interval piece ending at 1 could decide.
+bool outside_before_end(const PointSet& start, const PointSet& end) {
+  for (int d = 0; d < 3; ++d) {
+    bool above = true;
+    bool below = true;
+    for (int m = 0; m < start.count; ++m) {
+      above = above && start.w[m].c[d].lo > 0.0 && end.w[m].c[d].lo >= 0.0;
+      below = below && start.w[m].c[d].hi < 0.0 && end.w[m].c[d].hi <= 0.0;
+    }
+    if (above || below) return true;
+  }
+  return false;
 }
 
 // W over the step: W(t) = W(0) + t (W(1) - W(0)), each difference point linear in t. Its enclosures at the step's ends
@@ -467,7 +487,15 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
     difference_points(query.kind, x1, end);
     // D at t = 0 and 1 from the whole step's parts, which the first piece reuses.
     const DetParts parts = det_parts(x0, x1);
-    if (!undecidable_end(start, dot(parts.a0, parts.bc00)) && !undecidable_end(end, dot(parts.a1, parts.bc11))) {
+    const bool touch_at_start = undecidable_end(start, dot(parts.a0, parts.bc00));
+    const bool touch_at_end = undecidable_end(end, dot(parts.a1, parts.bc11));
+    if (touch_at_start || (touch_at_end && outside_before_end(start, end))) {
+      // A touch at the start is the earliest contact; one at the end is the only contact when there is none before.
+      const int at = touch_at_start ? 0 : 1;
+      const std::optional<bool> touches = detail::touches_at_step_end(query, at);
+      if (touches && *touches) return make_hit(query, at, CcdState::Hit);
+      if (touches && at == 1) return CcdResult{};
+    } else if (!touch_at_end) {
       const Motion motion = motion_of(start, end);
       Search search{motion, decide_exactly ? kDeepPieceBudget : 0, 1.0};
       const PointSet boxes = piece_boxes(start, end);

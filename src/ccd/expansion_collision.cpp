@@ -532,14 +532,15 @@ Poly determinant(const PolyVector& a, const PolyVector& b, const PolyVector& c) 
   return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
-// The sign system: D and, built on first use, the 2D cross and dot products of W in every axis projection.
+// The sign system: D and, built on first use, the 2D cross and dot products of W in every axis projection; signs at
+// the step's ends also straight from the end positions.
 class System {
  public:
   System(PairKind kind, const std::array<std::array<double, 3>, 8>& c) : c_(c) {
     std::array<PolyVector, 4> x;
     for (int i = 0; i < 4; ++i)
       for (int k = 0; k < 3; ++k) x[i][k] = {Expansion(c[i][k]), Expansion::difference(c[i + 4][k], c[i][k])};
-    d_ = determinant(x[1] - x[0], x[2] - x[0], x[3] - x[0]);
+    edges_ = {x[1] - x[0], x[2] - x[0], x[3] - x[0]};
     const auto add = [&](int i, int j) {
       pairs_[static_cast<std::size_t>(points_)] = {i, j};
       w_[static_cast<std::size_t>(points_++)] = x[i] - x[j];
@@ -554,10 +555,7 @@ class System {
   }
   // Exact signs of the 2D cross (a < b) and dot products of W[a], W[b] in the projection dropping axis k at the
   // step's start (end = 0) or end (end = 1), from those positions directly (no polynomial built or evaluated).
-  int end_cross(int end, int k, int a, int b) const {
-    const int u = (k + 1) % 3, v = (k + 2) % 3;
-    return (w_at(end, a, u) * w_at(end, b, v) - w_at(end, a, v) * w_at(end, b, u)).sign();
-  }
+  int end_cross(int end, int k, int a, int b) const { return end_cross_value(end, k, a, b).sign(); }
   int end_dot(int end, int k, int a, int b) const {
     const int u = (k + 1) % 3, v = (k + 2) % 3;
     return (w_at(end, a, u) * w_at(end, b, u) + w_at(end, a, v) * w_at(end, b, v)).sign();
@@ -578,7 +576,25 @@ class System {
     }
     return true;
   }
-  const Poly& d() const { return d_; }
+  // D, built on first use.
+  const Poly& d() {
+    if (!d_built_) d_ = determinant(edges_[0], edges_[1], edges_[2]);
+    d_built_ = true;
+    return d_;
+  }
+  // The exact sign of D at the step's start (end = 0) or end (end = 1), from those positions.
+  int end_d_sign(int end) const {
+    std::array<std::array<Expansion, 3>, 3> e;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        e[i][k] = Expansion::difference(c_[4 * end + i + 1][k], c_[4 * end][k]);
+    const auto minor = [&](int u, int v) { return e[1][u] * e[2][v] - e[1][v] * e[2][u]; };
+    return (e[0][0] * minor(1, 2) - e[0][1] * minor(0, 2) + e[0][2] * minor(0, 1)).sign();
+  }
+  // The exact sign of the normal component N_k (see normal()) at the step's start (end = 0) or end (end = 1).
+  int end_normal_sign(int end, int k) const {
+    return (end_cross_value(end, k, 0, 1) + end_cross_value(end, k, 1, 2) - end_cross_value(end, k, 0, 2)).sign();
+  }
   int points() const { return points_; }
   // The axes ordered by decreasing magnitude of the rounded normal of W's plane at time t: the projection dropping the
   // first is the best conditioned (estimates only, the order does not change the answer).
@@ -625,7 +641,14 @@ class System {
   }
 
  private:
+  Expansion end_cross_value(int end, int k, int a, int b) const {
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    return w_at(end, a, u) * w_at(end, b, v) - w_at(end, a, v) * w_at(end, b, u);
+  }
+
+  std::array<PolyVector, 3> edges_;  // x[1] - x[0], x[2] - x[0], x[3] - x[0]
   Poly d_;
+  bool d_built_ = false;
   std::array<PolyVector, 4> w_;
   int points_ = 0;
   // W[m] at the step's start (end = 0) or end (end = 1), one coordinate, exactly.
@@ -745,6 +768,7 @@ class Predicate {
   }
   // The exact sign of N_k at the candidate, 0 when it is zero or cannot be decided (no failure: only a shortcut).
   int normal_sign(int k) {
+    if (end_ >= 0) return system_.end_normal_sign(end_, k);
     const Poly& n = system_.normal(k);
     if (degree(n) < 0) return 0;
     return sign_at(candidate_, n).value_or(0);
@@ -888,6 +912,12 @@ int fixed_projection_axis(System& system) {
   return -1;
 }
 
+// Whether the candidate's time (every time of its bracket) is at or after the time t.
+bool not_before(const Candidate& c, double t) {
+  if (c.rational) return (c.num - c.den.scaled(t)).sign() >= 0;
+  return (c.lo - Expansion(t)).sign() >= 0;
+}
+
 // D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
 // closed and its membership changes only at roots of the sign polynomials, so its earliest point (if any) is 0 or
 // such a root: the predicate is tested at t = 0, t = 1 and every root of every non-zero sign polynomial.
@@ -922,12 +952,16 @@ std::optional<exact::ExactAnswer> coplanar_for_whole_step(System& system) {
     const Candidate& c = candidates[i];
     start_estimate[i] = c.rational ? c.num.estimate() / c.den.estimate() : c.lo.estimate();
   }
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return start_estimate[a] < start_estimate[b]; });
+  // At equal estimates the grid points go first: their signs come cheapest (at t = 1 straight from the end positions).
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (start_estimate[a] != start_estimate[b]) return start_estimate[a] < start_estimate[b];
+    return candidates[a].point && !candidates[b].point;
+  });
   exact::ExactAnswer answer;
   for (const std::size_t i : order) {
     Candidate& candidate = candidates[i];
-    if (answer.hit && !candidate.rational && (candidate.lo - Expansion(answer.toi)).sign() > 0) continue;
+    // A candidate not before the contact found cannot lower its time (the time is a double not above the candidate).
+    if (answer.hit && not_before(candidate, answer.toi)) continue;
     const std::optional<bool> inside = Predicate(system, candidate, axis).holds();
     if (!inside) return std::nullopt;
     if (*inside) {
@@ -967,7 +1001,26 @@ std::optional<exact::ExactAnswer> decide(const CcdQuery& query) {
   return exact::ExactAnswer{};
 }
 
+// Whether the origin is in conv W at the step's start (end = 0) or end (end = 1): D there exactly zero, then the
+// reference's predicate with signs straight from those positions.
+std::optional<bool> touches_at(const CcdQuery& query, int end) {
+  const auto coordinates = scaled_coordinates(query);
+  if (!coordinates) return std::nullopt;
+  System system(query.kind, *coordinates);
+  if (system.end_d_sign(end) != 0) return false;
+  Candidate candidate = point_at(Expansion(end == 0 ? 0.0 : 1.0));
+  return Predicate(system, candidate).holds();
+}
+
 }  // namespace
+
+std::optional<bool> touches_at_step_end(const CcdQuery& query, int end) {
+  try {
+    return touches_at(query, end);
+  } catch (const ExpansionCapacityExceeded&) {
+    return std::nullopt;
+  }
+}
 
 std::optional<exact::ExactAnswer> expansion_collision(const CcdQuery& query) {
   try {

@@ -13,4 +13,9 @@ namespace clothcd::ccd::detail {
 /// than 180 binary orders of magnitude): the caller then asks the GMP reference.
 [[nodiscard]] std::optional<exact::ExactAnswer> expansion_collision(const CcdQuery& query);
 
+/// Whether the query's primitives touch exactly at the step's start (end = 0) or end (end = 1), from those positions
+/// with floating-point expansions; nullopt when this tier cannot decide it (the caller then runs the full exact
+/// tiers).
+[[nodiscard]] std::optional<bool> touches_at_step_end(const CcdQuery& query, int end);
+
 }  // namespace clothcd::ccd::detail

@@ -46,6 +46,27 @@ class QueryGenerator {
     return query;
   }
 
+  // Primitives that touch exactly at the step's end (at_start: its start), from continuous positions at the other end:
+  // all four points meeting in one grid point (a collapsing cloth), or grid points with the vertex on a face's edge or
+  // corner, or the edges crossing at their midpoints.
+  ccd::CcdQuery touching_end_query(PairKind kind, bool at_start) {
+    ccd::CcdQuery query;
+    query.kind = kind;
+    for (int i = 0; i < 4; ++i) {
+      query.start[i] = vector(1.0);
+      query.end[i] = grid_vector();
+    }
+    if (coin()) {
+      for (int i = 1; i < 4; ++i) query.end[i] = query.end[0];
+    } else if (kind == PairKind::VertexFace) {
+      query.end[0] = coin() ? query.end[1 + pick(3)] : 0.5 * (query.end[1] + query.end[2]);
+    } else {
+      query.end[1] = query.end[2] + query.end[3] - query.end[0];
+    }
+    if (at_start) std::swap(query.start, query.end);
+    return query;
+  }
+
   // Coordinates on a coarse dyadic grid: exact coplanarity, coincident points, parallel and zero-length edges,
   // zero-area faces, contacts at exactly t = 0, 1/2 or 1, and planar motion (D identically zero).
   ccd::CcdQuery degenerate_query(PairKind kind) {
@@ -189,6 +210,43 @@ TEST_CASE("a proven hit's time of impact is within 1e-6 below the exact earliest
   }
   CHECK(hits > 100);
   CHECK(degenerate_hits > 20);
+}
+
+TEST_CASE("steps that start or end in an exact touch: hit and time of impact as the exact earliest contact's",
+          "[ccd][differential]") {
+  // A touch at an end is decided from that end's positions alone; one at the end counts only when nothing touches
+  // before it, which the random other end makes happen both ways.
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  const bool at_start = GENERATE(false, true);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 9301u : 9302u);
+  int hits = 0, earlier = 0;
+  for (int i = 0; i < 300; ++i) {
+    const ccd::CcdQuery query = generator.touching_end_query(kind, at_start);
+    ccd::exact::RationalPoints points;
+    for (int p = 0; p < 4; ++p) {
+      for (int d = 0; d < 3; ++d) {
+        points[p][d] = mpq_class(query.start[p][d]);
+        points[p + 4][d] = mpq_class(query.end[p][d]);
+      }
+    }
+    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(kind, points);
+    for (const ccd::CcdSettings& settings : {clothcd::test::exact_settings(), clothcd::test::approximate_settings()}) {
+      const ccd::CcdResult result = ccd::continuous_collision(query, settings);
+      INFO("query " << i << " exact decisions " << settings.decide_exactly << " toi " << result.toi << " exact in ["
+                    << exact.lo << ", " << exact.hi << "]");
+      REQUIRE((result.hit || !exact.hit));
+      if (result.state == ccd::CcdState::ConservativeHit) continue;
+      CHECK(result.hit == exact.hit);
+      if (!result.hit) continue;
+      CHECK(result.toi <= exact.hi);
+      CHECK(result.toi >= exact.lo - 1e-6);
+    }
+    hits += exact.hit ? 1 : 0;
+    earlier += exact.hit && exact.hi < 1.0 && exact.lo > 0.0 ? 1 : 0;
+  }
+  CHECK(hits > 200);
+  INFO("hits " << hits << " before the end " << earlier);
+  if (!at_start) CHECK(earlier > 5);  // contacts before the touch at the end
 }
 
 TEST_CASE("degenerate grid queries: fast CCD and filters never miss a reference collision", "[ccd][differential]") {
