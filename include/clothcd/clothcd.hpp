@@ -18,6 +18,7 @@
 #include "clothcd/ccd/query_file.hpp"
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/detection/detection_errors.hpp"
 #include "clothcd/detection/pair_culler.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/geometry/convex_hull.hpp"

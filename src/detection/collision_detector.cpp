@@ -2,7 +2,9 @@
 // search of cloth vs obstacles and cloth vs itself, culling by the algebraic non-penetration and spatial projection
 // filters (sections 2.2, 2.3) or by a culler such as the pair network behind the filters (section 3.3), then the
 // exact-safe continuous collision test of every surviving pair. The candidates are not stored: each search thread culls and tests them block
-// by block as it finds them (pair_pipeline.hpp), and only the collisions are kept.
+// by block as it finds them (pair_pipeline.hpp), and only the collisions are kept, within the collision budget. They
+// are copied out of the threads' chunks into the output as the chunks are freed, and sorted in place through one
+// (key, position) pair each: 96 + 16 bytes per collision at the peak.
 #include "clothcd/detection/collision_detector.hpp"
 
 #include <algorithm>
@@ -84,15 +86,32 @@ std::size_t find_moved_rows(const Vertices& before, const Vertices& now, std::ve
   return count;
 }
 
-// Sorts `hits` by key (linear time: a radix sort of the keys, then the collisions moved into that order).
-void sort_by_key(std::vector<detail::KeyedCollision>& hits, std::vector<detail::KeyedIndex>& order,
-                 std::vector<detail::KeyedIndex>& scratch, std::vector<detail::KeyedCollision>& sorted) {
-  order.resize(hits.size());
-  for (std::size_t i = 0; i < hits.size(); ++i) order[i] = {hits[i].key, i};
-  detail::radix_sort_by_key(order, scratch);
-  sorted.resize(hits.size());
-  for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = hits[order[i].index];
-  hits.swap(sorted);
+// Sorts `collisions` by their keys (keys[i] is collisions[i]'s key, at position keys[i].index) in place: the keys by a
+// radix sort, then the collisions along the cycles of that permutation, each position marked done by its index. After
+// it keys[i].index == i.
+void sort_by_key(std::vector<Collision>& collisions, std::vector<detail::KeyedIndex>& keys) {
+  detail::radix_sort_by_key(keys);
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (keys[i].index == i) continue;
+    const Collision first = collisions[i];
+    std::size_t to = i;
+    for (;;) {
+      const std::size_t from = keys[to].index;
+      keys[to].index = to;
+      if (from == i) {
+        collisions[to] = first;
+        break;
+      }
+      collisions[to] = collisions[from];
+      to = from;
+    }
+  }
+}
+
+// Frees a vector's memory (clear() keeps its capacity).
+template <class T>
+void release(std::vector<T>& values) {
+  std::vector<T>().swap(values);
 }
 
 // True when the collision has a vertex of the cloth (body 0) flagged in `moved`.
@@ -115,13 +134,14 @@ struct CollisionDetector::Impl {
   std::unique_ptr<detail::PairPipeline> pipeline;  // culling and exact test of the candidates as they are found
   std::vector<detail::BodyFrames> frames;          // what the pipeline reads, per body id
   detail::PairKeys keys;
-  // The collisions of the last call with their sort keys, each kind in canonical order (vertex-face ones first in
-  // `collisions`), and the candidate counts of that call: what a re-test call keeps of it.
-  std::vector<detail::KeyedCollision> vertex_face_hits, edge_edge_hits;
-  detail::PipelineCounts counts;
-  std::vector<detail::KeyedIndex> order, sort_scratch;
-  std::vector<detail::KeyedCollision> sorted;
+  // The collisions of the last call in canonical order (vertex-face ones first, each kind sorted like
+  // broadphase::sort_candidates would sort the candidates), their sort keys (collision_keys[i] is collisions[i]'s,
+  // edge-edge keys after every vertex-face key; kept only with reuse) and the candidate counts of that call: what a
+  // re-test call keeps of it. While a call runs, both collect its collisions in no order.
   std::vector<Collision> collisions;
+  std::vector<detail::KeyedIndex> collision_keys;
+  detail::PipelineCounts counts;
+  std::function<bool()> cancel;              // set_cancel_check
   // The cloth positions of this call, copied from the caller's (any layout) into the row-major layout the
   // hierarchies and the pair blocks read: the one copy detect() makes. With DetectorSettings::reuse_unchanged they
   // become the previous positions when the call completes (a swap, not a copy).
@@ -177,7 +197,9 @@ struct CollisionDetector::Impl {
 
   // The search with the cloth at `start`/`end`, every candidate culled and, with `exact`, tested as it is found; with
   // `only_moved`, just the pairs with a moved cloth vertex. Adds the counts to `found` and the search's time summed
-  // over its tasks to `task_ms`; the collisions stay in the pipeline (finish()).
+  // over its tasks to `task_ms`; with `exact`, appends the collisions to `collisions` and their keys to
+  // `collision_keys` (unsorted). Throws CollisionBudgetExceeded when they exceed the budget, DetectionCancelled when
+  // the cancel check says so.
   void search(const Vertices& start, const Vertices& end, bool only_moved, bool exact, detail::PipelineCounts& found,
               double& task_ms) {
     frames.assign(obstacles.size() + 1, {});
@@ -193,7 +215,9 @@ struct CollisionDetector::Impl {
     pipeline_settings.culler = culler.get();
     pipeline_settings.exact = exact;
     pipeline_settings.observer = exact && observer ? &observer : nullptr;
-    pipeline->begin(frames, keys, pipeline_settings);
+    pipeline_settings.max_collisions = settings.max_collisions;
+    pipeline_settings.cancel = &cancel;
+    pipeline->begin(frames, keys, pipeline_settings, exact ? static_cast<long>(collisions.size()) : 0);
 
     broadphase::TraversalSettings traversal{settings.parallel, only_moved ? &moved : nullptr};
     traversal.chunk_pairs = static_cast<std::size_t>(settings.block_pairs);
@@ -206,28 +230,52 @@ struct CollisionDetector::Impl {
       broadphase::find_pair_candidates(cloth_view, view, traversal, *pipeline, &traversal_stats);
     }
     task_ms += traversal_stats.task_ms;
-    std::vector<detail::KeyedCollision> none;
-    pipeline->finish(exact ? vertex_face_hits : none, exact ? edge_edge_hits : none, found);
-  }
-
-  // This call's collisions in canonical order: vertex-face ones first, each kind sorted like
-  // broadphase::sort_candidates would sort the candidates.
-  void collect() {
-    sort_by_key(vertex_face_hits, order, sort_scratch, sorted);
-    sort_by_key(edge_edge_hits, order, sort_scratch, sorted);
-    collisions.clear();
-    collisions.reserve(vertex_face_hits.size() + edge_edge_hits.size());
-    for (const detail::KeyedCollision& h : vertex_face_hits) collisions.push_back(h.collision);
-    for (const detail::KeyedCollision& h : edge_edge_hits) collisions.push_back(h.collision);
-  }
-
-  // Drops the last call's collisions with a moved cloth vertex (a re-test searches and tests those pairs again).
-  void drop_moved_hits() {
-    for (std::vector<detail::KeyedCollision>* hits : {&vertex_face_hits, &edge_edge_hits}) {
-      hits->erase(std::remove_if(hits->begin(), hits->end(),
-                                 [&](const detail::KeyedCollision& h) { return has_moved_vertex(h.collision, moved); }),
-                  hits->end());
+    pipeline->add_counts(found);
+    if (!exact) return;
+    // The last block of the search may have passed the budget after every thread's last check.
+    const std::size_t total = collisions.size() + pipeline->collision_count();
+    if (total > static_cast<std::size_t>(settings.max_collisions)) {
+      throw CollisionBudgetExceeded(static_cast<long>(total), settings.max_collisions);
     }
+    collisions.reserve(total);
+    collision_keys.reserve(total);
+    const std::uint64_t edge_edge_offset = keys.vertex_face_key_count();
+    pipeline->take_collisions([&](const std::vector<detail::KeyedCollision>& chunk) {
+      for (const detail::KeyedCollision& h : chunk) {
+        const std::uint64_t offset = h.collision.kind == PairKind::EdgeEdge ? edge_edge_offset : 0;
+        collision_keys.push_back({h.key + offset, collisions.size()});
+        collisions.push_back(h.collision);
+      }
+    });
+  }
+
+  // Puts this call's collisions in canonical order; keeps their keys only for a re-test.
+  void collect() {
+    sort_by_key(collisions, collision_keys);
+    if (!settings.reuse_unchanged || culler) release(collision_keys);
+  }
+
+  // Drops the last call's collisions with a moved cloth vertex (a re-test searches and tests those pairs again); the
+  // others keep their order.
+  void drop_moved_hits() {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < collisions.size(); ++i) {
+      if (has_moved_vertex(collisions[i], moved)) continue;
+      collisions[kept] = collisions[i];
+      collision_keys[kept] = {collision_keys[i].key, kept};
+      ++kept;
+    }
+    collisions.resize(kept);
+    collision_keys.resize(kept);
+  }
+
+  // Forgets a call that threw: no collisions, no search state, nothing a re-test could reuse.
+  void discard() {
+    release(collisions);
+    release(collision_keys);
+    pipeline->discard();
+    counts = detail::PipelineCounts{};
+    has_previous = false;
   }
 };
 
@@ -240,6 +288,10 @@ CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_
   if (settings.block_pairs < 1 || settings.block_pairs > kMaxBlockPairs) {
     throw std::invalid_argument("collision detector: block_pairs must be between 1 and " +
                                 std::to_string(kMaxBlockPairs));
+  }
+  if (settings.max_collisions < 1 || settings.max_collisions > kLargestCollisionBudget) {
+    throw std::invalid_argument("collision detector: max_collisions must be between 1 and " +
+                                std::to_string(kLargestCollisionBudget));
   }
   impl_->filter = ccd_filter(settings.culling);
   if (settings.culling == CullingMode::Network) {
@@ -314,32 +366,37 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
 
   // The broad phase, the culling and the exact test run together (each thread's pairs go through them block by
   // block), so their times are the wall time of the search split in proportion to the threads' time in each.
-  double wall_ms = 0, task_ms = 0;
+  double wall_ms = 0, task_ms = 0, collect_ms = 0;
   detail::PipelineCounts replaced, found;
-  if (reuse) {
-    // The last call's pairs with a moved vertex, found again on the hierarchy and positions of that call: only their
-    // count is needed, to keep the candidate and culled counts those of a full search.
+  try {
+    if (reuse) {
+      // The last call's pairs with a moved vertex, found again on the hierarchy and positions of that call: only
+      // their count is needed, to keep the candidate and culled counts those of a full search.
+      auto t = Clock::now();
+      d.search(d.previous_start, d.previous_end, true, false, replaced, task_ms);
+      wall_ms += milliseconds_since(t);
+      d.drop_moved_hits();
+    } else {
+      release(d.collisions);
+      release(d.collision_keys);
+      d.counts = detail::PipelineCounts{};
+    }
+
     auto t = Clock::now();
-    d.search(d.previous_start, d.previous_end, true, false, replaced, task_ms);
+    d.refit(start, end, reuse);
+    d.stats.refit_ms = milliseconds_since(t);
+
+    t = Clock::now();
+    d.search(start, end, reuse, true, found, task_ms);
     wall_ms += milliseconds_since(t);
-    d.drop_moved_hits();
-  } else {
-    d.vertex_face_hits.clear();
-    d.edge_edge_hits.clear();
-    d.counts = detail::PipelineCounts{};
+
+    t = Clock::now();
+    d.collect();
+    collect_ms = milliseconds_since(t);
+  } catch (...) {
+    d.discard();
+    throw;
   }
-
-  auto t = Clock::now();
-  d.refit(start, end, reuse);
-  d.stats.refit_ms = milliseconds_since(t);
-
-  t = Clock::now();
-  d.search(start, end, reuse, true, found, task_ms);
-  wall_ms += milliseconds_since(t);
-
-  t = Clock::now();
-  d.collect();
-  const double collect_ms = milliseconds_since(t);
 
   const double threads_ms = replaced.culling_ms + replaced.exact_ms + found.culling_ms + found.exact_ms;
   const double scale = task_ms > 0 && task_ms >= threads_ms ? wall_ms / task_ms : 1.0;
@@ -382,5 +439,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
 const DetectionStats& CollisionDetector::stats() const { return impl_->stats; }
 
 void CollisionDetector::set_block_observer(BlockObserver observer) { impl_->observer = std::move(observer); }
+
+void CollisionDetector::set_cancel_check(std::function<bool()> cancel) { impl_->cancel = std::move(cancel); }
 
 }  // namespace clothcd

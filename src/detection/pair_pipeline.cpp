@@ -3,6 +3,7 @@
 
 #include <utility>
 
+#include "clothcd/detection/detection_errors.hpp"
 #include "parallel_loop.hpp"
 
 namespace clothcd::detail {
@@ -35,16 +36,34 @@ PairPipeline::PairPipeline(int block_pairs)
 }
 
 void PairPipeline::begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys,
-                         const PipelineSettings& settings) {
+                         const PipelineSettings& settings, long kept) {
   bodies_ = &bodies;
   keys_ = &keys;
   settings_ = &settings;
-  for (Worker& w : workers_) {  // what a search left when it threw
+  discard();
+  found_.store(kept, std::memory_order_relaxed);
+}
+
+void PairPipeline::discard() {
+  for (Worker& w : workers_) {
     w.block.reset(PairKind::VertexFace);
-    w.vertex_face.clear();
-    w.edge_edge.clear();
+    std::vector<std::vector<KeyedCollision>>().swap(w.collisions);
     w.counts = PipelineCounts{};
   }
+}
+
+void PairPipeline::check_stop() const {
+  const PipelineSettings& s = *settings_;
+  if (s.cancel != nullptr && *s.cancel && (*s.cancel)()) throw DetectionCancelled();
+  const long found = found_.load(std::memory_order_relaxed);
+  if (s.exact && found > s.max_collisions) throw CollisionBudgetExceeded(found, s.max_collisions);
+}
+
+KeyedCollision& PairPipeline::add_collision(Worker& w) {
+  if (w.collisions.empty() || w.collisions.back().size() == kChunkCollisions) {
+    w.collisions.emplace_back().reserve(kChunkCollisions);
+  }
+  return w.collisions.back().emplace_back();
 }
 
 void PairPipeline::consume(const broadphase::CandidateSet& chunk) {
@@ -90,6 +109,7 @@ void PairPipeline::run_block(Worker& w) const {
   ccd::PairBlock& block = w.block;
   const int n = block.size();
   if (n == 0) return;
+  check_stop();
   const PipelineSettings& s = *settings_;
   if (s.observer != nullptr) {
     if (!w.observed) w.observed = std::make_unique<ccd::PairBlock>(block.capacity());
@@ -113,14 +133,15 @@ void PairPipeline::run_block(Worker& w) const {
   w.counts.culling_ms += milliseconds_since(t);
   if (s.exact) {
     t = StageClock::now();
-    std::vector<KeyedCollision>& hits = block.kind() == PairKind::VertexFace ? w.vertex_face : w.edge_edge;
+    long hits = 0;
     for (int i = 0; i < survivors; ++i) {
       // The filters' tests are not repeated on the pairs that passed them.
       const ccd::CcdResult r =
           ccd::continuous_collision_after_filter(block.query(i), s.ccd, i < filtered ? applied : ccd::CcdFilter::None);
       if (!r.hit) continue;
       if (s.observer != nullptr) w.observed_colliding[block.tag(i)] = 1;
-      KeyedCollision& h = hits.emplace_back();
+      KeyedCollision& h = add_collision(w);
+      ++hits;
       h.key = w.keys[block.tag(i)];
       h.collision.kind = block.kind();
       h.collision.vertices = block.vertices(i);
@@ -130,6 +151,7 @@ void PairPipeline::run_block(Worker& w) const {
       h.collision.conservative = r.state == ccd::CcdState::ConservativeHit;
     }
     w.counts.exact_ms += milliseconds_since(t);
+    if (hits > 0) found_.fetch_add(hits, std::memory_order_relaxed);
   }
   if (s.observer != nullptr) show_block(w, survivors);
   block.reset(block.kind());
@@ -145,16 +167,19 @@ void PairPipeline::show_block(Worker& w, int survivors) const {
   (*settings_->observer)(seen);
 }
 
-void PairPipeline::finish(std::vector<KeyedCollision>& vertex_face, std::vector<KeyedCollision>& edge_edge,
-                          PipelineCounts& counts) {
+void PairPipeline::add_counts(PipelineCounts& counts) {
   for (Worker& w : workers_) {
-    vertex_face.insert(vertex_face.end(), w.vertex_face.begin(), w.vertex_face.end());
-    edge_edge.insert(edge_edge.end(), w.edge_edge.begin(), w.edge_edge.end());
     counts.add(w.counts);
-    w.vertex_face.clear();
-    w.edge_edge.clear();
     w.counts = PipelineCounts{};
   }
+}
+
+std::size_t PairPipeline::collision_count() const {
+  std::size_t count = 0;
+  for (const Worker& w : workers_) {
+    for (const std::vector<KeyedCollision>& chunk : w.collisions) count += chunk.size();
+  }
+  return count;
 }
 
 }  // namespace clothcd::detail

@@ -2,12 +2,16 @@
 // The detector's narrow phase as a candidate sink (internal): each thread turns the candidate chunks the broad phase
 // hands it into pair blocks (vertices, canonical sort key, positions), culls a block (the filters, or a culler with
 // the filters behind it), runs the exact test on the survivors while they are in cache, keeps only the
-// collisions and reuses the block. Nothing proportional to the number of candidates is stored.
+// collisions and reuses the block. Nothing proportional to the number of candidates is stored; the collisions are kept
+// in chunks of fixed size (no vector doubling: the memory is the collisions' own), and between blocks each thread
+// checks the collision budget and the cancel check, so that a degenerate step stops within a block per thread.
 #include <tbb/enumerable_thread_specific.h>
 
 #include <array>
-#include <memory>
+#include <atomic>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "clothcd/broadphase/body_topology.hpp"
@@ -40,6 +44,8 @@ class PairKeys {
     return (vertex_base_[vertex_body] + static_cast<std::uint64_t>(vertex)) * face_base_.back() +
            face_base_[face_body] + static_cast<std::uint64_t>(face);
   }
+  /// One more than the largest vertex-face key: added to the edge-edge keys, it orders every vertex-face pair first.
+  [[nodiscard]] std::uint64_t vertex_face_key_count() const { return vertex_base_.back() * face_base_.back(); }
   /// Key of edge `edge_a` of `body_a` against edge `edge_b` of `body_b`.
   [[nodiscard]] std::uint64_t edge_edge(int body_a, int edge_a, int body_b, int edge_b) const {
     return (edge_base_[body_a] + static_cast<std::uint64_t>(edge_a)) * edge_base_.back() + edge_base_[body_b] +
@@ -64,6 +70,9 @@ struct PipelineSettings {
   const PairCuller* culler = nullptr;                ///< When set: the culler, with the combined filters behind it.
   bool exact = true;  ///< False: only count the candidates and the culled pairs (no exact test, no collisions).
   const BlockObserver* observer = nullptr;  ///< When set: shown every block after its exact test.
+  long max_collisions = 0;                  ///< With `exact`: the budget (CollisionBudgetExceeded beyond it).
+  /// When set and not empty: called before each block; true throws DetectionCancelled.
+  const std::function<bool()>* cancel = nullptr;
 };
 
 /// Counts and thread times of the pipeline (times summed over threads).
@@ -85,15 +94,38 @@ class PairPipeline final : public broadphase::CandidateSink {
   /// A pipeline whose threads each hold a block of `block_pairs` pairs (see ccd::PairBlock).
   explicit PairPipeline(int block_pairs);
 
-  /// Starts a search: `bodies` (indexed by body id), their keys and the settings must stay valid until finish().
-  void begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys, const PipelineSettings& settings);
+  /// Collisions each chunk of a thread's list holds (1.7 MB of them).
+  static constexpr std::size_t kChunkCollisions = std::size_t{1} << 14;
 
-  /// Culls and tests one chunk of candidates (called by the search's threads).
+  /// Starts a search: `bodies` (indexed by body id), their keys and the settings must stay valid until the collisions
+  /// are taken. `kept` collisions of the call are already found (a re-test's kept answer): they count in the budget.
+  void begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys, const PipelineSettings& settings, long kept);
+
+  /// Culls and tests one chunk of candidates (called by the search's threads). Throws CollisionBudgetExceeded or
+  /// DetectionCancelled to stop the search (see PipelineSettings).
   void consume(const broadphase::CandidateSet& chunk) override;
 
-  /// Appends the collisions found since begin() (in no particular order) to `vertex_face` and `edge_edge`, adds the
-  /// counts to `counts`, and empties the threads' lists.
-  void finish(std::vector<KeyedCollision>& vertex_face, std::vector<KeyedCollision>& edge_edge, PipelineCounts& counts);
+  /// Adds the counts of the search to `counts`.
+  void add_counts(PipelineCounts& counts);
+
+  /// How many collisions the search found.
+  [[nodiscard]] std::size_t collision_count() const;
+
+  /// Hands the collisions found since begin() to `take(const std::vector<KeyedCollision>&)`, chunk by chunk in no
+  /// particular order, and frees each chunk after it (so that copying them out needs no memory beyond one chunk).
+  template <class Take>
+  void take_collisions(const Take& take) {
+    for (Worker& w : workers_) {
+      for (std::vector<KeyedCollision>& chunk : w.collisions) {
+        take(chunk);
+        std::vector<KeyedCollision>().swap(chunk);
+      }
+      w.collisions.clear();
+    }
+  }
+
+  /// Frees what a search left (its collisions and counts), e.g. after it threw.
+  void discard();
 
  private:
   // One thread's block, scratch, collisions and counts. The block's tags are the pairs' indices into `keys`.
@@ -105,9 +137,14 @@ class PairPipeline final : public broadphase::CandidateSink {
     std::vector<std::uint8_t> observed_culled, observed_colliding;  // with an observer: per pair, by tag
     std::vector<std::uint8_t> culled;                     // cull_pair_block's scratch
     CullerScratch culler;                                 // network mode: cull_with_culler's scratch
-    std::vector<KeyedCollision> vertex_face, edge_edge;  // collisions found
+    std::vector<std::vector<KeyedCollision>> collisions;  // found, in chunks of kChunkCollisions
     PipelineCounts counts;
   };
+
+  // Appends a collision to the thread's last chunk, or to a new one when that is full.
+  static KeyedCollision& add_collision(Worker& w);
+  // Throws when the search must stop: the cancel check returns true, or the collisions found exceed the budget.
+  void check_stop() const;
 
   void run_block(Worker& w) const;
   void show_block(Worker& w, int survivors) const;
@@ -116,6 +153,7 @@ class PairPipeline final : public broadphase::CandidateSink {
   const PairKeys* keys_ = nullptr;
   const PipelineSettings* settings_ = nullptr;
   tbb::enumerable_thread_specific<Worker> workers_;
+  mutable std::atomic<long> found_{0};  // collisions found by all threads (the kept ones included)
 };
 
 }  // namespace clothcd::detail

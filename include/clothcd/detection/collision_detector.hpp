@@ -4,6 +4,7 @@
 /// cloth positions at the start and end of the step; it returns every colliding vertex-face and edge-edge pair.
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "clothcd/broadphase/hierarchy_kind.hpp"
 #include "clothcd/detection/block_observer.hpp"
 #include "clothcd/detection/collision.hpp"
+#include "clothcd/detection/detection_errors.hpp"
 #include "clothcd/mesh/positions_ref.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
@@ -33,6 +35,9 @@ enum class CullingMode {
 
 /// Largest DetectorSettings::block_pairs.
 inline constexpr int kMaxBlockPairs = 1 << 20;
+
+/// Largest DetectorSettings::max_collisions.
+inline constexpr long kLargestCollisionBudget = 2'000'000'000;
 
 /// Detector settings; defaults are what a cloth simulation wants.
 struct DetectorSettings {
@@ -66,6 +71,12 @@ struct DetectorSettings {
   /// pairs (about 240 bytes each) that it reuses, so memory does not grow with the number of candidates. The result
   /// does not depend on it.
   int block_pairs = 1024;
+  /// The collision budget of one detect() call (1 .. kLargestCollisionBudget): a step with more collisions stops its
+  /// search as soon as the count passes it and throws CollisionBudgetExceeded (detection_errors.hpp) instead of
+  /// filling memory. A degenerate step (a cloth collapsing to a point, a simulation that exploded) has millions; at
+  /// the default, the call's result and its sort stay under 450 MB (at most 112 bytes per collision), and a
+  /// step of a well-behaved simulation has far fewer (a 146k-face garment in contact: about 107k).
+  long max_collisions = 4'000'000;
 };
 
 /// Counts and times of the last detect() call.
@@ -124,10 +135,20 @@ class CollisionDetector {
   /// The detector copies each once into its own row-major buffers, the layout its hierarchies and pair blocks read
   /// (the copy it keeps to recognise a re-test of the step, see DetectorSettings::reuse_unchanged); no other copy is
   /// made. The returned reference stays valid until the next call.
+  /// Throws std::invalid_argument on wrong sizes or a NaN or infinite coordinate, CollisionBudgetExceeded when the step
+  /// has more than DetectorSettings::max_collisions collisions, DetectionCancelled when cancelled (set_cancel_check).
+  /// After any of these the detector holds no collisions and stays usable: the next call searches its step in full.
   const std::vector<Collision>& detect(const PositionsRef& start, const PositionsRef& end);
 
   /// Counts and times of the last detect() call.
   [[nodiscard]] const DetectionStats& stats() const;
+
+  /// Makes later detect() calls cancellable: the call's threads call `cancel` before each block of
+  /// DetectorSettings::block_pairs candidate pairs (so from several threads at once: it must be thread-safe, e.g.
+  /// reading a std::atomic<bool> another thread sets), and once it returns true the call stops within a block per
+  /// thread and throws DetectionCancelled. Its cost is one call per block of about a thousand culled and tested pairs,
+  /// nothing beside them. An empty function (the default) turns cancelling off.
+  void set_cancel_check(std::function<bool()> cancel);
 
   /// Shows every later detect() call's candidate pairs to `observer`, block by block, each pair exactly once, with its
   /// culling and exact-test outcome (see ObservedBlock and BlockObserver's thread rule); an empty function stops it.
