@@ -1,7 +1,10 @@
 // `clothcd detect T0_MESH T1_MESH`: continuous collision detection of one step of a deformable mesh against itself
 // (the obstacle may be part of the same mesh); prints counts and stage times, or with --json (and into --out) every
-// collision with its normal, barycentric weights or edge parameters and bodies.
+// collision with its normal, barycentric weights or edge parameters and bodies. The JSON report is written as it is
+// serialised, one collision at a time, never held whole in memory. A step with more collisions than --max-collisions
+// ends with the detector's one-line error and exit code 1.
 // `--filter network` runs the detector's network culling (the pair network in front of the combined filters).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <chrono>
@@ -10,9 +13,12 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <ostream>
 #include <stdexcept>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/learning/network_culler.hpp"
@@ -34,27 +40,43 @@ struct DetectOptions {
   std::string network;
   std::string out;
   bool json = false;
+  long max_collisions = DetectorSettings{}.max_collisions;
 };
 
-// The face index of each vertex-face collision (collisions name the face by its three vertices): a face listed
-// several times in the mesh is several faces with the same vertices, named in turn for each vertex that hits them.
-std::vector<int> collision_faces(const TriangleMesh& mesh, const std::vector<Collision>& collisions) {
-  std::map<std::array<int, 3>, std::vector<int>> faces_of;
-  for (int f = 0; f < static_cast<int>(mesh.face_count()); ++f) {
-    faces_of[{mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)}].push_back(f);
+// The face index of each vertex-face collision in turn (collisions name the face by its three vertices): a face
+// listed several times in the mesh is several faces with the same vertices, named in turn for each vertex that hits
+// them. One sorted row (three vertices, face) per face: 16 bytes a face, nothing per collision but for such faces.
+class FaceNames {
+ public:
+  explicit FaceNames(const TriangleMesh& mesh) {
+    rows_.reserve(static_cast<std::size_t>(mesh.face_count()));
+    for (int f = 0; f < static_cast<int>(mesh.face_count()); ++f) {
+      rows_.push_back({mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2), f});
+    }
+    std::sort(rows_.begin(), rows_.end());
   }
-  std::map<std::pair<int, std::array<int, 3>>, std::size_t> named;  // (vertex, face vertices) -> faces named so far
-  std::vector<int> faces;
-  for (const Collision& c : collisions) {
-    if (c.kind != PairKind::VertexFace) continue;
-    const std::array<int, 3> key{c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
-    const std::vector<int>& candidates = faces_of.at(key);
-    std::size_t& next = named[{c.vertices[0].vertex, key}];
-    faces.push_back(candidates[std::min(next, candidates.size() - 1)]);
-    ++next;
+
+  // The face of the next vertex-face collision `c`.
+  int next(const Collision& c) {
+    const std::array<int, 3> corners{c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
+    const auto first = std::lower_bound(rows_.begin(), rows_.end(), Row{corners[0], corners[1], corners[2], -1});
+    auto last = first;
+    while (last != rows_.end() && (*last)[0] == corners[0] && (*last)[1] == corners[1] && (*last)[2] == corners[2]) {
+      ++last;
+    }
+    if (first == last) throw std::logic_error("detect: a collision names a face the mesh does not have");
+    if (last - first == 1) return (*first)[3];
+    std::size_t& named = named_[{c.vertices[0].vertex, corners}];
+    const std::size_t k = std::min(named, static_cast<std::size_t>(last - first) - 1);
+    ++named;
+    return first[static_cast<std::ptrdiff_t>(k)][3];
   }
-  return faces;
-}
+
+ private:
+  using Row = std::array<int, 4>;
+  std::vector<Row> rows_;
+  std::map<std::pair<int, std::array<int, 3>>, std::size_t> named_;  // (vertex, face vertices) -> faces named so far
+};
 
 // A time in milliseconds to the microsecond (the full 17 digits of the other numbers say nothing here).
 double milliseconds(double ms) { return std::round(ms * 1000.0) / 1000.0; }
@@ -78,17 +100,11 @@ Json collision_json(const Collision& c, int face) {
   return item;
 }
 
-Json detect_json(const DetectOptions& o, const TriangleMesh& mesh, const std::vector<Collision>& collisions,
-                 const DetectionStats& s, double load_ms) {
-  const std::vector<int> faces = collision_faces(mesh, collisions);
-  Json vertex_face = Json::array(), edge_edge = Json::array();
-  std::size_t vertex_face_index = 0;
-  for (const Collision& c : collisions) {
-    if (c.kind == PairKind::VertexFace)
-      vertex_face.push_back(collision_json(c, faces[vertex_face_index++]));
-    else
-      edge_edge.push_back(collision_json(c, -1));
-  }
+// The report's fields before the collisions.
+Json detect_json_head(const DetectOptions& o, const TriangleMesh& mesh, const std::vector<Collision>& collisions,
+                      const DetectionStats& s, double load_ms) {
+  const auto vertex_face = static_cast<std::size_t>(std::count_if(
+      collisions.begin(), collisions.end(), [](const Collision& c) { return c.kind == PairKind::VertexFace; }));
   Json report = json_report("detect");
   report["t0"] = o.t0_path;
   report["t1"] = o.t1_path;
@@ -101,8 +117,8 @@ Json detect_json(const DetectOptions& o, const TriangleMesh& mesh, const std::ve
   report["counts"] = {{"candidates_vertex_face", s.candidates_vertex_face},
                       {"candidates_edge_edge", s.candidates_edge_edge},
                       {"culled", s.culled},
-                      {"vertex_face", vertex_face.size()},
-                      {"edge_edge", edge_edge.size()}};
+                      {"vertex_face", vertex_face},
+                      {"edge_edge", collisions.size() - vertex_face}};
   report["times_ms"] = {{"load", milliseconds(load_ms)},       {"refit", milliseconds(s.refit_ms)},
                         {"traversal", milliseconds(s.traversal_ms)}, {"filters", milliseconds(s.culling_ms)},
                         {"exact", milliseconds(s.exact_ms)}};
@@ -110,9 +126,45 @@ Json detect_json(const DetectOptions& o, const TriangleMesh& mesh, const std::ve
     report["network"] = {{"dropped", s.network_dropped},          {"overruled", s.network_overruled},
                          {"kept", s.network_kept},                {"network_ms", milliseconds(s.network_ms)},
                          {"filters_ms", milliseconds(s.network_filters_ms)}};
-  report["vertex_face"] = std::move(vertex_face);
-  report["edge_edge"] = std::move(edge_edge);
   return report;
+}
+
+// `text` with `indent` after each line break.
+std::string indented(const std::string& text, const std::string& indent) {
+  std::string result;
+  result.reserve(text.size());
+  for (const char ch : text) {
+    result += ch;
+    if (ch == '\n') result += indent;
+  }
+  return result;
+}
+
+// Writes the array field `name` of the report's top level, one collision of `kind` at a time, as Json::dump(2) writes
+// it within the report.
+void write_collisions(std::ostream& out, const char* name, PairKind kind, const std::vector<Collision>& collisions,
+                      FaceNames& faces) {
+  out << ",\n  \"" << name << "\": [";
+  bool first = true;
+  for (const Collision& c : collisions) {
+    if (c.kind != kind) continue;
+    const Json item = collision_json(c, kind == PairKind::VertexFace ? faces.next(c) : -1);
+    out << (first ? "\n    " : ",\n    ") << indented(item.dump(2), "    ");
+    first = false;
+  }
+  out << (first ? "]" : "\n  ]");
+}
+
+// Writes the report: the bytes Json::dump(2) gives for the head with the "vertex_face" and "edge_edge" arrays
+// appended, and a line break.
+void write_detect_json(std::ostream& out, const Json& head, const TriangleMesh& mesh,
+                       const std::vector<Collision>& collisions) {
+  const std::string text = head.dump(2);
+  out.write(text.data(), static_cast<std::streamsize>(text.size() - 2));  // without the closing "\n}"
+  FaceNames faces(mesh);
+  write_collisions(out, "vertex_face", PairKind::VertexFace, collisions, faces);
+  write_collisions(out, "edge_edge", PairKind::EdgeEdge, collisions, faces);
+  out << "\n}\n";
 }
 
 void run_detect(const DetectOptions& o) {
@@ -125,6 +177,7 @@ void run_detect(const DetectOptions& o) {
   learning::attach_network_culler(settings, o.network);
   settings.thickness = o.thickness;
   settings.decide_exactly = !o.approximate;
+  settings.max_collisions = o.max_collisions;
 
   const auto t = std::chrono::steady_clock::now();
   const MeshFrames frames = load_mesh_frames(o.t0_path, o.t1_path);
@@ -135,12 +188,12 @@ void run_detect(const DetectOptions& o) {
   const std::vector<Collision>& collisions = detector.detect(t0.vertices, frames.end);
   const DetectionStats& s = detector.stats();
   if (o.json || !o.out.empty()) {
-    const Json report = detect_json(o, t0, collisions, s, load_ms);
-    if (o.json) print_json(report);
+    const Json head = detect_json_head(o, t0, collisions, s, load_ms);
+    if (o.json) write_detect_json(std::cout, head, t0, collisions);
     if (!o.out.empty()) {
       std::ofstream file(o.out);
       if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
-      file << report.dump(2) << '\n';
+      write_detect_json(file, head, t0, collisions);
       file.close();  // flushes: a full disk shows here
       if (!file) throw std::runtime_error(o.out + ": write failed");
     }
@@ -182,6 +235,9 @@ void add_detect_command(CLI::App& app) {
   add_network_option(*command, o->network, "--model");
   add_json_flag(*command, o->json);
   command->add_option("--out", o->out, "Also write the JSON report (every collision and the stage times) to this file");
+  command->add_option("--max-collisions", o->max_collisions,
+                      "Collision budget: a step with more collisions stops early with an error (exit code 1)")
+      ->check(CLI::Range(1L, kLargestCollisionBudget));
   command->callback([o] { run_detect(*o); });
 }
 
