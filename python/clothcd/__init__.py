@@ -3,7 +3,8 @@
 Positions are (N, 3) float64 arrays and faces (F, 3) int32 arrays. CollisionDetector.detect and
 set_obstacle_positions read float64 arrays where they are, in any order (C, Fortran, a slice): no copy; other dtypes
 and array-likes are converted first (a copy). Elsewhere arrays in other dtypes or orders are converted.
-Errors arrive with the library's message: invalid arguments as ValueError, unreadable or invalid files as OSError.
+Errors arrive with the library's message: invalid arguments as ValueError, unreadable or invalid files as OSError, a
+step with more collisions than the detector's max_collisions as CollisionBudgetExceeded (a RuntimeError).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._clothcd import (
+    CollisionBudgetExceeded,
     __version__,
     load_mesh,
     load_mesh_frames,
@@ -29,7 +31,7 @@ from . import _clothcd
 from .collisions import EDGE_EDGE, VERTEX_FACE, Collision, Collisions
 
 __all__ = [
-    "__version__", "Collision", "Collisions", "CollisionDetector", "ccd", "default_model_dir", "load_mesh",
+    "__version__", "Collision", "CollisionBudgetExceeded", "Collisions", "CollisionDetector", "ccd", "default_model_dir", "load_mesh",
     "load_mesh_frames", "make_grid", "make_paper_cloth", "make_uv_sphere", "obb", "render_png", "save_mesh", "simplify",
     "simulate", "simulate_scene",
 ]
@@ -46,19 +48,20 @@ class CollisionDetector:
     Settings (keywords): hierarchy ("sphere-root-aabb", "aabb", "aabb-obb"), culling ("filters", "none",
     "nonpenetration", "projection", "network"), thickness, self_collision, model_path (network culling; default: the
     shipped model), max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly (True: every
-    reported collision is proven; False: the approximate mode's conservative hits); see the C++
-    clothcd::DetectorSettings. One detector must not be used from two threads at once; separate detectors may.
+    reported collision is proven; False: the approximate mode's conservative hits), max_collisions (the collision
+    budget of one detect() call); see the C++ clothcd::DetectorSettings. One detector must not be used from two threads at once; separate detectors may.
     """
 
     def __init__(self, faces, vertex_count: int, *, hierarchy: str = "sphere-root-aabb", culling: str = "filters",
                  thickness: float = 0.0, self_collision: bool = True, model_path: str = "",
                  max_leaf_faces: int = 32, parallel: bool = True, reuse_unchanged: bool = True,
-                 projection_normals: bool = True, decide_exactly: bool = True) -> None:
+                 projection_normals: bool = True, decide_exactly: bool = True,
+                 max_collisions: int = 4_000_000) -> None:
         if culling == "network" and not model_path:
             model_path = default_model_dir()
         self._detector = _clothcd._CollisionDetector(
             np.ascontiguousarray(faces, dtype=np.int32), vertex_count, hierarchy, culling, thickness, self_collision,
-            model_path, max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly)
+            model_path, max_leaf_faces, parallel, reuse_unchanged, projection_normals, decide_exactly, max_collisions)
 
     def add_obstacle(self, vertices, faces) -> int:
         """Adds a static obstacle; returns its body id (1, 2, ...)."""
@@ -86,7 +89,9 @@ class CollisionDetector:
         """Every collision of the step from cloth positions `x0` to `x1` ((N, 3) each). float64 arrays in any order
         reach the C++ detector as views, without a copy (the detector then copies the positions once into its own
         buffers, as it does for a C++ caller); other dtypes are converted first. Runs without the GIL: do not modify
-        `x0` or `x1` from another thread meanwhile."""
+        `x0` or `x1` from another thread meanwhile. Ctrl-C stops it within a fraction of a second (KeyboardInterrupt).
+        Raises CollisionBudgetExceeded when the step has more than max_collisions collisions (a degenerate step: the
+        search stops early); the detector stays usable, and the next call searches its step in full."""
         kind, bodies, vertices, toi, parameters, normal, conservative = self._detector.detect(
             np.asarray(x0, dtype=np.float64), np.asarray(x1, dtype=np.float64))
         return Collisions(kind, bodies, vertices, toi, parameters, normal, conservative.view(bool))

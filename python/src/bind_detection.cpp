@@ -1,12 +1,14 @@
 // CollisionDetector and the CCD on query arrays for Python. detect() and set_obstacle_positions() hand the (N, 3)
 // float64 arrays to the detector as views of their memory (no copy here; the detector makes its one copy of the
-// positions, as for a C++ caller) and detect() runs without the GIL.
+// positions, as for a C++ caller) and detect() runs without the GIL, cancelled by Ctrl-C (KeyboardInterrupt).
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <thread>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -57,6 +59,43 @@ struct PyDetector {
   std::uintptr_t last_start = 0, last_end = 0;
 };
 
+/// Python's signal handlers run on the main thread while detect() is under way: the detector's cancel check, called by
+/// the search's threads before each block, takes the GIL on the thread that called detect() (the main thread when
+/// Ctrl-C is to reach it) at most every 50 ms and calls PyErr_CheckSignals; a handler that raises (KeyboardInterrupt)
+/// cancels the call, and the raised exception is what Python sees. Cost: a clock read per block of pairs.
+class SignalCheck {
+ public:
+  explicit SignalCheck(CollisionDetector& detector) : detector_(detector) {
+    detector_.set_cancel_check([this] { return check(); });
+  }
+  ~SignalCheck() { detector_.set_cancel_check({}); }
+  SignalCheck(const SignalCheck&) = delete;
+  SignalCheck& operator=(const SignalCheck&) = delete;
+
+  /// True when a signal handler raised an exception (then set as Python's error).
+  [[nodiscard]] bool raised() const { return raised_.load(); }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static constexpr Clock::duration kPeriod = std::chrono::milliseconds(50);
+
+  bool check() {
+    if (raised_.load(std::memory_order_relaxed)) return true;
+    if (std::this_thread::get_id() != caller_) return false;
+    const Clock::time_point now = Clock::now();
+    if (now - last_ < kPeriod) return false;
+    last_ = now;
+    nb::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) raised_.store(true);
+    return raised_.load(std::memory_order_relaxed);
+  }
+
+  CollisionDetector& detector_;
+  const std::thread::id caller_ = std::this_thread::get_id();
+  Clock::time_point last_ = Clock::now();  // only the caller's thread reads and writes it
+  std::atomic<bool> raised_{false};
+};
+
 /// The collisions as arrays: kind (0 vertex-face, 1 edge-edge), bodies (n, 4), vertices (n, 4), toi, parameters
 /// (n, 2), normal (n, 3), conservative.
 auto collision_arrays(const std::vector<Collision>& collisions) {
@@ -92,7 +131,8 @@ void bind_detection(nb::module_& m) {
           "__init__",
           [](PyDetector* self, const IntArray& faces, int vertex_count, const std::string& hierarchy,
              const std::string& culling, double thickness, bool self_collision, const std::string& model_path,
-             int max_leaf_faces, bool parallel, bool reuse_unchanged, bool projection_normals, bool decide_exactly) {
+             int max_leaf_faces, bool parallel, bool reuse_unchanged, bool projection_normals, bool decide_exactly,
+             long max_collisions) {
             DetectorSettings settings;
             settings.hierarchy = hierarchy_kind(hierarchy);
             settings.culling = culling_mode(culling);
@@ -103,12 +143,14 @@ void bind_detection(nb::module_& m) {
             settings.reuse_unchanged = reuse_unchanged;
             settings.projection_normals = projection_normals;
             settings.decide_exactly = decide_exactly;
+            settings.max_collisions = max_collisions;
             learning::attach_network_culler(settings, model_path);
             new (self) PyDetector{CollisionDetector(to_faces(faces, "faces"), vertex_count, settings)};
           },
           nb::arg("faces"), nb::arg("vertex_count"), nb::arg("hierarchy"), nb::arg("culling"), nb::arg("thickness"),
           nb::arg("self_collision"), nb::arg("model_path"), nb::arg("max_leaf_faces"), nb::arg("parallel"),
-          nb::arg("reuse_unchanged"), nb::arg("projection_normals"), nb::arg("decide_exactly"))
+          nb::arg("reuse_unchanged"), nb::arg("projection_normals"), nb::arg("decide_exactly"),
+          nb::arg("max_collisions"))
       .def(
           "add_obstacle",
           [](PyDetector& self, const DoubleArray& vertices, const IntArray& faces) {
@@ -136,9 +178,13 @@ void bind_detection(nb::module_& m) {
             self.last_start = reinterpret_cast<std::uintptr_t>(x0.data());
             self.last_end = reinterpret_cast<std::uintptr_t>(x1.data());
             const std::vector<Collision>* collisions = nullptr;
-            {
+            SignalCheck signals(self.detector);
+            try {
               nb::gil_scoped_release release;
               collisions = &self.detector.detect(x0, x1);
+            } catch (const DetectionCancelled&) {
+              if (signals.raised()) throw nb::python_error();  // the handler's exception, e.g. KeyboardInterrupt
+              throw;
             }
             return collision_arrays(*collisions);
           },
