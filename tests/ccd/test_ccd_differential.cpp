@@ -212,6 +212,35 @@ TEST_CASE("a proven hit's time of impact is within 1e-6 below the exact earliest
   CHECK(degenerate_hits > 20);
 }
 
+TEST_CASE("a time of impact past a near touch of the coplanarity cubic is the later real contact's",
+          "[ccd][differential]") {
+  // A vertex at the origin and a face whose plane comes within about 1e-15 of it at t = 0.57 (D has a complex pair of
+  // roots 1.5e-7 from the real axis there: no contact) and passes through it at t = 0.61, in the same piece of the
+  // step, the vertex inside the face throughout (in the xy projection). Bracketing D's first root by halving follows the near touch, where no interval
+  // sign is certain; only a bracket with certain opposite signs of D at its ends may give the time of impact.
+  const std::array<Vector3d, 4> start{Vector3d(0, 0, 0), Vector3d(-1, -0.0, 0x1.1ca81054e1da0p+3),
+                                      Vector3d(1, -1, -0x1.197c481a4b052p+4), Vector3d(1, 1, -0.0)};
+  const std::array<Vector3d, 4> end{Vector3d(0, 0, 0), Vector3d(-1, -0.5, 0x1.232bc83a96d4ep+3),
+                                    Vector3d(1, -1, -0x1.997c481a4b052p+4), Vector3d(0.75, 1, -0.0)};
+  const ccd::CcdQuery query = make_query(PairKind::VertexFace, start, end);
+  ccd::exact::RationalPoints points;
+  for (int p = 0; p < 4; ++p) {
+    for (int d = 0; d < 3; ++d) {
+      points[p][d] = mpq_class(start[p][d]);
+      points[p + 4][d] = mpq_class(end[p][d]);
+    }
+  }
+  const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(PairKind::VertexFace, points);
+  REQUIRE(exact.hit);
+  REQUIRE(exact.lo > 0.6);
+  REQUIRE(exact.hi < 0.62);
+  const ccd::CcdResult result = ccd::continuous_collision(query);
+  REQUIRE(result.hit);
+  CHECK(result.state == ccd::CcdState::Hit);
+  CHECK(result.toi <= exact.hi);
+  CHECK(result.toi >= exact.lo - 1e-6);
+}
+
 TEST_CASE("steps that start or end in an exact touch: hit and time of impact as the exact earliest contact's",
           "[ccd][differential]") {
   // A touch at an end is decided from that end's positions alone; one at the end counts only when nothing touches
