@@ -18,7 +18,9 @@
 //     bracket that cannot be proven that tight leaves the piece undecided.
 // Undecided pieces split on to depth 4, and with CcdSettings::decide_exactly deeper within a budget of pieces; a
 // query still undecided then goes to the exact expansion tier (expansion_collision.cpp), and what that cannot decide
-// to the exact rational reference, so no collision is ever missed and every hit is proven. A possible exact touch at
+// to the exact rational reference, so no collision is ever missed and every hit is proven; before them, a query whose
+// primitives share a coordinate plane for the whole step (two points of W pinned to it, pinned_segment_contact.hpp)
+// is decided on that plane, where it is a segment test that intervals can prove. A possible exact touch at
 // t = 0 or 1, which no piece ending there could decide, is settled before any subdivision by an exact test of that
 // end's positions: a touch at the start is the earliest contact, and one at the end the only one when a coordinate
 // separates W from the origin for every t < 1 (a collapsing cloth); other such queries go to the exact tiers (so a
@@ -35,6 +37,7 @@
 #include "ccd/exact_reference.hpp"
 #include "ccd/expansion_collision.hpp"
 #include "ccd/interval.hpp"
+#include "ccd/pinned_segment_contact.hpp"
 #include "ccd/thickness_contact.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
@@ -507,6 +510,8 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
       if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
       undecided_from = search.toi;
     }
+    if (const std::optional<detail::PinnedAnswer> pinned = detail::pinned_segment_contact(query))
+      return pinned->hit ? make_hit(query, pinned->toi, CcdState::Hit) : CcdResult{};
     if (!decide_exactly) return make_hit(query, undecided_from, CcdState::ConservativeHit);
   }
   if (const std::optional<exact::ExactAnswer> answer = detail::expansion_collision(query))

@@ -6,6 +6,7 @@
 
 #include "ccd/ccd_test_support.hpp"
 #include "ccd/exact_reference.hpp"
+#include "ccd/pinned_segment_contact.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;
@@ -64,6 +65,45 @@ class QueryGenerator {
       query.end[1] = query.end[2] + query.end[3] - query.end[0];
     }
     if (at_start) std::swap(query.start, query.end);
+    return query;
+  }
+
+  // Primitives that share a coordinate plane for the whole step (a vertex and a face's edge, an edge's end and an
+  // edge: equal coordinates on one axis at both ends), the other points to one side of it, with a contact in the plane
+  // near a random time half of the time; or (crossed) two edges each with one end in a plane the other edge's other
+  // end shares, so that the points off the plane lie on both sides of it.
+  ccd::CcdQuery pinned_query(PairKind kind, bool crossed) {
+    ccd::CcdQuery query;
+    query.kind = kind;
+    for (int i = 0; i < 4; ++i) {
+      query.start[i] = vector(1.0);
+      query.end[i] = query.start[i] + vector(0.5);
+    }
+    const int axis = pick(3);
+    if (kind == PairKind::EdgeEdge && crossed) {
+      for (auto* x : {&query.start, &query.end}) {
+        (*x)[2][axis] = (*x)[0][axis];
+        (*x)[3][axis] = (*x)[1][axis];
+      }
+      return query;
+    }
+    // Vertex-face: the vertex and the face's first edge; edge-edge: a's first end and edge b.
+    const std::array<int, 3> on_plane = kind == PairKind::VertexFace ? std::array<int, 3>{0, 1, 2}
+                                                                      : std::array<int, 3>{0, 2, 3};
+    const int off_plane = kind == PairKind::VertexFace ? 3 : 1;
+    if (coin()) {  // the first point passes through the segment of the other two at t*
+      const double t_star = uniform(0, 1), lambda = uniform(0, 1);
+      const Vector3d velocity = vector(1.0);
+      const Vector3d p = query.start[on_plane[1]] + t_star * (query.end[on_plane[1]] - query.start[on_plane[1]]);
+      const Vector3d q = query.start[on_plane[2]] + t_star * (query.end[on_plane[2]] - query.start[on_plane[2]]);
+      query.start[on_plane[0]] = (1 - lambda) * p + lambda * q - t_star * velocity;
+      query.end[on_plane[0]] = query.start[on_plane[0]] + velocity;
+    }
+    for (auto* x : {&query.start, &query.end}) {
+      const double plane = (*x)[on_plane[1]][axis];
+      for (const int i : on_plane) (*x)[i][axis] = plane;
+      (*x)[off_plane][axis] = plane + uniform(0.1, 1.0);
+    }
     return query;
   }
 
@@ -239,6 +279,45 @@ TEST_CASE("a time of impact past a near touch of the coplanarity cubic is the la
   CHECK(result.state == ccd::CcdState::Hit);
   CHECK(result.toi <= exact.hi);
   CHECK(result.toi >= exact.lo - 1e-6);
+}
+
+TEST_CASE("primitives sharing a coordinate plane: decided on the plane, as the exact earliest contact",
+          "[ccd][differential]") {
+  const auto kind = GENERATE(PairKind::VertexFace, PairKind::EdgeEdge);
+  QueryGenerator generator(kind == PairKind::VertexFace ? 9401u : 9402u);
+  int hits = 0, decided_on_plane = 0;
+  for (int i = 0; i < 400; ++i) {
+    const bool crossed = kind == PairKind::EdgeEdge && i % 4 == 3;
+    const ccd::CcdQuery query = generator.pinned_query(kind, crossed);
+    ccd::exact::RationalPoints points;
+    for (int p = 0; p < 4; ++p) {
+      for (int d = 0; d < 3; ++d) {
+        points[p][d] = mpq_class(query.start[p][d]);
+        points[p + 4][d] = mpq_class(query.end[p][d]);
+      }
+    }
+    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(kind, points);
+    INFO("query " << i << " exact " << exact.hit << " in [" << exact.lo << ", " << exact.hi << "]");
+    const std::optional<ccd::detail::PinnedAnswer> pinned = ccd::detail::pinned_segment_contact(query);
+    if (pinned) {
+      ++decided_on_plane;
+      REQUIRE(pinned->hit == exact.hit);
+      if (pinned->hit) {
+        CHECK(pinned->toi <= exact.hi);
+        CHECK(pinned->toi >= exact.lo - 1e-6);
+      }
+    }
+    CHECK_FALSE((crossed && pinned));  // the points off the plane on both sides: not a segment test
+    const ccd::CcdResult result = ccd::continuous_collision(query);
+    REQUIRE(result.hit == exact.hit);
+    if (result.hit) {
+      CHECK(result.toi <= exact.hi);
+      CHECK(result.toi >= exact.lo - 1e-6);
+    }
+    hits += exact.hit ? 1 : 0;
+  }
+  CHECK(hits > 60);
+  CHECK(decided_on_plane > 200);
 }
 
 TEST_CASE("steps that start or end in an exact touch: hit and time of impact as the exact earliest contact's",
