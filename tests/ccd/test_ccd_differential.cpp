@@ -149,6 +149,18 @@ class QueryGenerator {
   std::mt19937 random_;
 };
 
+// The exact earliest contact of the query, by the rational reference (narrowed to 2^-40).
+ccd::exact::ContactTimeBounds exact_contact_time_of(const ccd::CcdQuery& query) {
+  ccd::exact::RationalPoints points;
+  for (int p = 0; p < 4; ++p) {
+    for (int d = 0; d < 3; ++d) {
+      points[p][d] = mpq_class(query.start[p][d]);
+      points[p + 4][d] = mpq_class(query.end[p][d]);
+    }
+  }
+  return ccd::exact::exact_contact_time(query.kind, points);
+}
+
 struct Tally {
   int queries = 0;
   int reference_hits = 0;
@@ -231,14 +243,7 @@ TEST_CASE("a proven hit's time of impact is within 1e-6 below the exact earliest
     const bool degenerate = i % 3 == 2;
     const ccd::CcdQuery query = degenerate ? generator.degenerate_query(kind) : generator.random_query(kind);
     const ccd::CcdResult result = ccd::continuous_collision(query);
-    ccd::exact::RationalPoints points;
-    for (int p = 0; p < 4; ++p) {
-      for (int d = 0; d < 3; ++d) {
-        points[p][d] = mpq_class(query.start[p][d]);
-        points[p + 4][d] = mpq_class(query.end[p][d]);
-      }
-    }
-    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(kind, points);
+    const ccd::exact::ContactTimeBounds exact = exact_contact_time_of(query);
     INFO("query " << i << " toi " << result.toi << " exact in [" << exact.lo << ", " << exact.hi << "]");
     REQUIRE(result.hit == exact.hit);
     if (!result.hit) continue;
@@ -263,14 +268,7 @@ TEST_CASE("a time of impact past a near touch of the coplanarity cubic is the la
   const std::array<Vector3d, 4> end{Vector3d(0, 0, 0), Vector3d(-1, -0.5, 0x1.232bc83a96d4ep+3),
                                     Vector3d(1, -1, -0x1.997c481a4b052p+4), Vector3d(0.75, 1, -0.0)};
   const ccd::CcdQuery query = make_query(PairKind::VertexFace, start, end);
-  ccd::exact::RationalPoints points;
-  for (int p = 0; p < 4; ++p) {
-    for (int d = 0; d < 3; ++d) {
-      points[p][d] = mpq_class(start[p][d]);
-      points[p + 4][d] = mpq_class(end[p][d]);
-    }
-  }
-  const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(PairKind::VertexFace, points);
+  const ccd::exact::ContactTimeBounds exact = exact_contact_time_of(query);
   REQUIRE(exact.hit);
   REQUIRE(exact.lo > 0.6);
   REQUIRE(exact.hi < 0.62);
@@ -289,14 +287,7 @@ TEST_CASE("primitives sharing a coordinate plane: decided on the plane, as the e
   for (int i = 0; i < 400; ++i) {
     const bool crossed = kind == PairKind::EdgeEdge && i % 4 == 3;
     const ccd::CcdQuery query = generator.pinned_query(kind, crossed);
-    ccd::exact::RationalPoints points;
-    for (int p = 0; p < 4; ++p) {
-      for (int d = 0; d < 3; ++d) {
-        points[p][d] = mpq_class(query.start[p][d]);
-        points[p + 4][d] = mpq_class(query.end[p][d]);
-      }
-    }
-    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(kind, points);
+    const ccd::exact::ContactTimeBounds exact = exact_contact_time_of(query);
     INFO("query " << i << " exact " << exact.hit << " in [" << exact.lo << ", " << exact.hi << "]");
     const std::optional<ccd::detail::PinnedAnswer> pinned = ccd::detail::pinned_segment_contact(query);
     if (pinned) {
@@ -330,14 +321,7 @@ TEST_CASE("steps that start or end in an exact touch: hit and time of impact as 
   int hits = 0, earlier = 0;
   for (int i = 0; i < 300; ++i) {
     const ccd::CcdQuery query = generator.touching_end_query(kind, at_start);
-    ccd::exact::RationalPoints points;
-    for (int p = 0; p < 4; ++p) {
-      for (int d = 0; d < 3; ++d) {
-        points[p][d] = mpq_class(query.start[p][d]);
-        points[p + 4][d] = mpq_class(query.end[p][d]);
-      }
-    }
-    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(kind, points);
+    const ccd::exact::ContactTimeBounds exact = exact_contact_time_of(query);
     for (const ccd::CcdSettings& settings : {clothcd::test::exact_settings(), clothcd::test::approximate_settings()}) {
       const ccd::CcdResult result = ccd::continuous_collision(query, settings);
       INFO("query " << i << " exact decisions " << settings.decide_exactly << " toi " << result.toi << " exact in ["
