@@ -226,6 +226,17 @@ bool undecidable_end(const PointSet& w, const Interval& d_at_end) {
   return !boxes_exclude_origin(w, 0.0) && classify_projections(w, false) != PieceOutcome::Clear;
 }
 
+// True when a point of W is exactly the origin (a vertex on a face's corner, two edges sharing an end point): the
+// origin is then in conv W.
+bool has_zero_point(const PointSet& w) {
+  for (int m = 0; m < w.count; ++m) {
+    bool zero = true;
+    for (int d = 0; d < 3; ++d) zero = zero && w.w[m].c[d].lo == 0.0 && w.w[m].c[d].hi == 0.0;
+    if (zero) return true;
+  }
+  return false;
+}
+
 // True when the origin is certainly outside conv W(t) for every t in [0, 1): some coordinate is of one strict sign at
 // t = 0 and of that sign or zero at t = 1 for every point of W (start and end), so W(t), a convex combination with a
 // positive weight on W(0), keeps that strict sign before the end. A touch at the end then is the only possible contact:
@@ -495,7 +506,8 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
     if (touch_at_start || (touch_at_end && outside_before_end(start, end))) {
       // A touch at the start is the earliest contact; one at the end is the only contact when there is none before.
       const int at = touch_at_start ? 0 : 1;
-      const std::optional<bool> touches = detail::touches_at_step_end(query, at);
+      const std::optional<bool> touches =
+          has_zero_point(at == 0 ? start : end) ? std::optional<bool>(true) : detail::touches_at_step_end(query, at);
       if (touches && *touches) return make_hit(query, at, CcdState::Hit);
       if (touches && at == 1) return CcdResult{};
     } else if (!touch_at_end) {
