@@ -1,0 +1,70 @@
+#pragma once
+// The detector's bodies (internal): the cloth (body 0) and the obstacles (1, 2, ...), each with its topology, its
+// positions over the coming step, its swept vertex boxes and its hierarchy, refitted before a search only where
+// something changed.
+#include <cstdint>
+#include <vector>
+
+#include "clothcd/broadphase/body_topology.hpp"
+#include "clothcd/broadphase/bvh.hpp"
+#include "clothcd/broadphase/swept_boxes.hpp"
+#include "clothcd/broadphase/traversal.hpp"
+#include "clothcd/detection/collision_detector.hpp"
+#include "pair_pipeline.hpp"
+
+namespace clothcd::detail {
+
+/// One body: topology, positions over the coming step, swept vertex boxes and hierarchy.
+struct Body {
+  broadphase::BodyTopology topology;  ///< Faces and edges.
+  Vertices rest;                      ///< Obstacles: the mesh as added.
+  Vertices start;                     ///< Obstacles: positions at the start of the coming step.
+  Vertices end;                       ///< Obstacles: positions at its end.
+  broadphase::SweptBoxes boxes;       ///< Vertex boxes only (compute_swept_vertex_boxes): the hierarchy makes the rest.
+  broadphase::Bvh bvh;                ///< Hierarchy over `boxes`.
+  bool stale = true;                  ///< Boxes and hierarchy must be recomputed before the next search.
+  bool moving = false;                ///< Positions were set for the coming step only.
+};
+
+/// The cloth and the obstacles of a detector.
+class DetectorBodies {
+ public:
+  /// The cloth's topology; hierarchies are built with `settings`' volume, leaf size and rebuild ratio.
+  DetectorBodies(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings);
+
+  /// Adds a static obstacle; returns its body id (1, 2, ...). Throws std::invalid_argument on a non-finite coordinate.
+  int add_obstacle(const TriangleMesh& mesh);
+  /// Obstacle `body` (1 .. obstacle_count()); throws std::invalid_argument naming `caller` otherwise.
+  Body& obstacle(int body, const char* caller);
+  /// The same, read only.
+  const Body& obstacle(int body, const char* caller) const;
+  /// Number of obstacles.
+  [[nodiscard]] int obstacle_count() const { return static_cast<int>(obstacles_.size()); }
+  /// The cloth.
+  [[nodiscard]] const Body& cloth() const { return cloth_; }
+  /// True when some obstacle changed since the last refit.
+  [[nodiscard]] bool any_obstacle_stale() const;
+
+  /// Recomputes the cloth's boxes and refits its hierarchy to `start`/`end` (only the vertices flagged in `moved` when
+  /// given: the others are where the last refit saw them), and does the same for the stale obstacles. Returns how many
+  /// hierarchies were rebuilt instead of refitted.
+  int refit(const Vertices& start, const Vertices& end, double thickness, const std::vector<std::uint8_t>* moved);
+
+  /// What the pair pipeline reads, per body id, with the cloth at `start`/`end` (valid while those and the bodies are).
+  [[nodiscard]] std::vector<BodyFrames> frames(const Vertices& start, const Vertices& end) const;
+  /// The cloth's view for the candidate search.
+  [[nodiscard]] broadphase::BodyView cloth_view() const;
+  /// Obstacle `body`'s view for the candidate search.
+  [[nodiscard]] broadphase::BodyView obstacle_view(int body) const;
+
+  /// Ends a step: an obstacle moved for it rests at its end positions from the next step on, unless moved again.
+  void finish_step();
+
+ private:
+  broadphase::BvhSettings bvh_settings_;  // the cloth's (an obstacle's differs only in its volume)
+  broadphase::VolumeKind obstacle_volume_;
+  Body cloth_;
+  std::vector<Body> obstacles_;
+};
+
+}  // namespace clothcd::detail
