@@ -17,73 +17,15 @@ namespace {
 
 constexpr int kLanes = 8;
 
-// One double per lane, with the element-wise operations the features need.
-struct Lanes {
-  double v[kLanes];
-};
+// One double per lane, and a 3-vector per lane, with the vector layer's element-wise operations.
+using Lanes = simd::LaneArray<kLanes>;
+using Vec3 = simd::LaneVector3<kLanes>;
 
-[[gnu::always_inline]] inline Lanes operator+(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] + b.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator-(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] - b.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator*(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] * b.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator*(double s, const Lanes& a) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = s * a.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator/(const Lanes& a, double s) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] / s;
-  return r;
-}
-[[gnu::always_inline]] inline Lanes lane_min(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = b.v[l] < a.v[l] ? b.v[l] : a.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes lane_max(const Lanes& a, const Lanes& b) {  // std::max(a, b)
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes lane_sqrt(const Lanes& a) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = std::sqrt(a.v[l]);
-  return r;
-}
 [[gnu::always_inline]] inline Lanes lane_cbrt(const Lanes& a) {
   Lanes r;
   for (int l = 0; l < kLanes; ++l) r.v[l] = cube_root(a.v[l]);
   return r;
 }
-
-struct Vec3 {
-  Lanes c[3];
-};
-
-[[gnu::always_inline]] inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {{a.c[0] + b.c[0], a.c[1] + b.c[1], a.c[2] + b.c[2]}}; }
-[[gnu::always_inline]] inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}}; }
-[[gnu::always_inline]] inline Vec3 operator*(double s, const Vec3& a) { return {{s * a.c[0], s * a.c[1], s * a.c[2]}}; }
-[[gnu::always_inline]] inline Vec3 operator/(const Vec3& a, double s) { return {{a.c[0] / s, a.c[1] / s, a.c[2] / s}}; }
-[[gnu::always_inline]] inline Lanes dot(const Vec3& a, const Vec3& b) { return (a.c[0] * b.c[0] + a.c[1] * b.c[1]) + a.c[2] * b.c[2]; }
-[[gnu::always_inline]] inline Lanes dot(const Vec3& a, const double* s) {
-  return (s[0] * a.c[0] + s[1] * a.c[1]) + s[2] * a.c[2];  // the products commute exactly
-}
-[[gnu::always_inline]] inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
-}
-[[gnu::always_inline]] inline Lanes norm(const Vec3& a) { return lane_sqrt(dot(a, a)); }
 
 // The block's pairs: x[time][point], is_edge_edge per lane (1 or 0).
 struct PairBlock {
@@ -251,20 +193,10 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-void blocks_baseline(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, PairFeatureBatch& batch) {
-  blocks(pairs, count, features, batch);
-}
-
-#if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_AVX2 void blocks_avx2(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
-                                                 PairFeatureBatch& batch) {
-  blocks(pairs, count, features, batch);
-}
-CLOTHCD_SIMD_AVX512 void blocks_avx512(const ccd::CcdQuery* pairs, std::size_t count,
-                                                      std::size_t features, PairFeatureBatch& batch) {
-  blocks(pairs, count, features, batch);
-}
-#endif
+// The blocks compiled for every level (the same features at each).
+#define CLOTHCD_SIMD_KERNEL_FUNCTION blocks
+#define CLOTHCD_SIMD_KERNEL_AVX512
+#include "support/simd_versions.hpp"
 
 }  // namespace
 
@@ -276,12 +208,7 @@ bool pair_coordinates_finite(const ccd::CcdQuery& pair) {
 
 void compute_feature_blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, SimdLevel level,
                             PairFeatureBatch& batch) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (level == SimdLevel::Avx512) return blocks_avx512(pairs, count, features, batch);
-  if (level == SimdLevel::Avx2) return blocks_avx2(pairs, count, features, batch);
-#endif
-  (void)level;
-  blocks_baseline(pairs, count, features, batch);
+  CLOTHCD_SIMD_DISPATCH(level, run_kernel(pairs, count, features, batch));
 }
 
 }  // namespace clothcd::learning::detail
