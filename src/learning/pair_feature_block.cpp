@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "clothcd/simd_level.hpp"
@@ -15,7 +16,7 @@
 namespace clothcd::learning::detail {
 namespace {
 
-constexpr int kLanes = 8;
+constexpr int kLanes = ccd::PairLanes::kLanes;
 
 // One double per lane, and a 3-vector per lane, with the vector layer's element-wise operations.
 using Lanes = simd::LaneArray<kLanes>;
@@ -27,11 +28,22 @@ using Vec3 = simd::LaneVector3<kLanes>;
   return r;
 }
 
-// The block's pairs: x[time][point], is_edge_edge per lane (1 or 0).
-struct PairBlock {
+// A lane group's positions on the vector layer, x[time][point] (ccd::PairLanes' layout: three axes of kLanes
+// doubles), and is_edge_edge per lane (1 or 0, the group's kind).
+struct GroupPositions {
   Vec3 x[2][4];
   Lanes is_edge_edge;
 };
+
+[[gnu::always_inline]] inline GroupPositions positions_of(const ccd::PairLanes& group) {
+  GroupPositions b;
+  static_assert(sizeof b.x[0][0] == sizeof group.x[0][0], "a lane vector holds one point's three axes of lanes");
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 4; ++k) std::memcpy(&b.x[t][k], group.x[t][k], sizeof b.x[t][k]);
+  const double edge_edge = group.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
+  for (int l = 0; l < kLanes; ++l) b.is_edge_edge.v[l] = edge_edge;
+  return b;
+}
 
 // max(smallest, -largest) of `n` lanes-values: same_sign_margin of the per-pair code.
 [[gnu::always_inline]] inline Lanes same_sign_margin(const Lanes* values, int n) {
@@ -60,7 +72,7 @@ struct GapVectors {
   Vec3 d[2][4];
 };
 
-[[gnu::always_inline]] inline GapVectors gap_vectors(const PairBlock& b) {
+[[gnu::always_inline]] inline GapVectors gap_vectors(const GroupPositions& b) {
   GapVectors g;
   for (int t = 0; t < 2; ++t) {
     const Vec3* x = b.x[t];
@@ -87,7 +99,7 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
                                   {std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0)}};
 
 // Features of one block (all lanes filled) into out[f][lane] for f < kMaxPairFeatures.
-[[gnu::always_inline]] inline void block_features(const PairBlock& b, std::size_t features,
+[[gnu::always_inline]] inline void block_features(const GroupPositions& b, std::size_t features,
                                                   double (&out)[kMaxPairFeatures][kLanes]) {
   const Vec3* s = b.x[0];
   const Vec3* e = b.x[1];
@@ -159,41 +171,63 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-[[gnu::always_inline]] inline void blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
-                                          PairFeatureBatch& batch) {
+// The features of the lanes [0, used) of `group` into rows row[0, used) of `batch` (its values for `count` rows).
+[[gnu::always_inline]] inline void group_rows(const ccd::PairLanes& group, int used, const std::size_t* row,
+                                              std::size_t features, std::size_t count, PairFeatureBatch& batch) {
   const std::size_t dense = std::min<std::size_t>(features, 15);
-  for (std::size_t first = 0; first < count; first += kLanes) {
-    const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
-    PairBlock b;
-    for (int l = 0; l < kLanes; ++l) {
-      const ccd::CcdQuery& p = pairs[first + static_cast<std::size_t>(l < used ? l : 0)];
-      for (int k = 0; k < 4; ++k) {
-        for (int c = 0; c < 3; ++c) {
-          b.x[0][k].c[c].v[l] = p.start[k][c];
-          b.x[1][k].c[c].v[l] = p.end[k][c];
-        }
-      }
-      b.is_edge_edge.v[l] = p.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
+  double out[kMaxPairFeatures][kLanes];
+  block_features(positions_of(group), features, out);
+  for (int l = 0; l < used; ++l) {
+    const std::size_t i = row[l];
+    const ccd::CcdQuery pair = group.query(l);
+    if (!pair_coordinates_finite(pair)) {
+      for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
     }
-    double out[kMaxPairFeatures][kLanes];
-    block_features(b, features, out);
-    for (int l = 0; l < used; ++l) {
-      const std::size_t i = first + static_cast<std::size_t>(l);
-      if (!pair_coordinates_finite(pairs[i])) {
-        for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = std::numeric_limits<double>::quiet_NaN();
-        continue;
-      }
-      for (std::size_t f = 0; f < dense; ++f) batch.values[f * count + i] = out[f][l];
-      if (features > 15) {  // the extra features, per pair
-        double row[kMaxPairFeatures];
-        compute_pair_features(pairs[i], FeatureSettings{features}, row);
-        for (std::size_t f = 15; f < features; ++f) batch.values[f * count + i] = row[f];
-      }
+    for (std::size_t f = 0; f < dense; ++f) batch.values[f * count + i] = out[f][l];
+    if (features > 15) {  // the extra features, per pair
+      double extra[kMaxPairFeatures];
+      compute_pair_features(pair, FeatureSettings{features}, extra);
+      for (std::size_t f = 15; f < features; ++f) batch.values[f * count + i] = extra[f];
     }
   }
 }
 
-// The blocks compiled for every level (the same features at each).
+// The pairs of `block`, group by group, straight from its lanes.
+[[gnu::always_inline]] inline void blocks(const ccd::PairBlock& block, std::size_t features, PairFeatureBatch& batch) {
+  const auto count = static_cast<std::size_t>(block.size());
+  std::size_t row[kLanes];
+  for (std::size_t first = 0; first < count; first += kLanes) {
+    const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
+    for (int l = 0; l < used; ++l) row[l] = first + static_cast<std::size_t>(l);
+    group_rows(block.group(static_cast<int>(first / kLanes)), used, row, features, count, batch);
+  }
+}
+
+// The pairs of `pairs`, each kind's in lane groups in order.
+[[gnu::always_inline]] inline void blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
+                                          PairFeatureBatch& batch) {
+  ccd::PairLanes group;
+  std::size_t row[kLanes];
+  const auto flush = [&]() {
+    if (group.count == 0) return;
+    group.pad_unused();
+    group_rows(group, group.count, row, features, count, batch);
+    group.count = 0;
+  };
+  for (const PairKind kind : {PairKind::VertexFace, PairKind::EdgeEdge}) {
+    group.kind = kind;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (pairs[i].kind != kind) continue;
+      row[group.count] = i;
+      group.set(group.count++, pairs[i]);
+      if (group.count == kLanes) flush();
+    }
+    flush();
+  }
+}
+
+// Both forms of the blocks compiled for every level (the same features at each).
 #define CLOTHCD_SIMD_KERNEL_FUNCTION blocks
 #define CLOTHCD_SIMD_KERNEL_AVX512
 #include "support/simd_versions.hpp"
@@ -209,6 +243,11 @@ bool pair_coordinates_finite(const ccd::CcdQuery& pair) {
 void compute_feature_blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, SimdLevel level,
                             PairFeatureBatch& batch) {
   CLOTHCD_SIMD_DISPATCH(level, run_kernel(pairs, count, features, batch));
+}
+
+void compute_feature_blocks(const ccd::PairBlock& block, std::size_t features, SimdLevel level,
+                            PairFeatureBatch& batch) {
+  CLOTHCD_SIMD_DISPATCH(level, run_kernel(block, features, batch));
 }
 
 }  // namespace clothcd::learning::detail
