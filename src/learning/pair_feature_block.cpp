@@ -16,7 +16,10 @@
 namespace clothcd::learning::detail {
 namespace {
 
-constexpr int kLanes = ccd::PairLanes::kLanes;
+// Lanes per kernel step: half a ccd::PairLanes group.
+constexpr int kLanes = 8;
+constexpr int kGroupLanes = ccd::PairLanes::kLanes;
+static_assert(kGroupLanes % kLanes == 0, "a lane group splits into whole kernel steps");
 
 // One double per lane, and a 3-vector per lane, with the vector layer's element-wise operations.
 using Lanes = simd::LaneArray<kLanes>;
@@ -28,18 +31,18 @@ using Vec3 = simd::LaneVector3<kLanes>;
   return r;
 }
 
-// A lane group's positions on the vector layer, x[time][point] (ccd::PairLanes' layout: three axes of kLanes
-// doubles), and is_edge_edge per lane (1 or 0, the group's kind).
+// kLanes pairs' positions on the vector layer, x[time][point], and is_edge_edge per lane (1 or 0).
 struct GroupPositions {
   Vec3 x[2][4];
   Lanes is_edge_edge;
 };
 
-[[gnu::always_inline]] inline GroupPositions positions_of(const ccd::PairLanes& group) {
+// kLanes lanes of a lane group from lane `first` on (the group's kind on every lane).
+[[gnu::always_inline]] inline GroupPositions positions_of(const ccd::PairLanes& group, int first) {
   GroupPositions b;
-  static_assert(sizeof b.x[0][0] == sizeof group.x[0][0], "a lane vector holds one point's three axes of lanes");
   for (int t = 0; t < 2; ++t)
-    for (int k = 0; k < 4; ++k) std::memcpy(&b.x[t][k], group.x[t][k], sizeof b.x[t][k]);
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c) std::memcpy(b.x[t][k].c[c].v, group.x[t][k][c] + first, sizeof b.x[t][k].c[c].v);
   const double edge_edge = group.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
   for (int l = 0; l < kLanes; ++l) b.is_edge_edge.v[l] = edge_edge;
   return b;
@@ -171,15 +174,16 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-// The features of the lanes [0, used) of `group` into rows row[0, used) of `batch` (its values for `count` rows).
-[[gnu::always_inline]] inline void group_rows(const ccd::PairLanes& group, int used, const std::size_t* row,
-                                              std::size_t features, std::size_t count, PairFeatureBatch& batch) {
+// Writes the features `out` of lanes [0, used) to rows row_of(l) of `batch` (its values for `count` rows); pair_of(l)
+// is lane l's pair (for the finiteness check and the extra features).
+template <class RowOf, class PairOf>
+[[gnu::always_inline]] inline void write_rows(const double (&out)[kMaxPairFeatures][kLanes], int used,
+                                              const RowOf& row_of, const PairOf& pair_of, std::size_t features,
+                                              std::size_t count, PairFeatureBatch& batch) {
   const std::size_t dense = std::min<std::size_t>(features, 15);
-  double out[kMaxPairFeatures][kLanes];
-  block_features(positions_of(group), features, out);
   for (int l = 0; l < used; ++l) {
-    const std::size_t i = row[l];
-    const ccd::CcdQuery pair = group.query(l);
+    const std::size_t i = row_of(l);
+    const ccd::CcdQuery& pair = pair_of(l);
     if (!pair_coordinates_finite(pair)) {
       for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = std::numeric_limits<double>::quiet_NaN();
       continue;
@@ -193,37 +197,54 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-// The pairs of `block`, group by group, straight from its lanes.
+// ccd::PairLanes::query, inlined here (the lane group's own is in the core library).
+[[gnu::always_inline]] inline ccd::CcdQuery lane_query(const ccd::PairLanes& group, int lane) {
+  ccd::CcdQuery q;
+  q.kind = group.kind;
+  for (int k = 0; k < 4; ++k) {
+    q.start[k] = Eigen::Vector3d(group.x[0][k][0][lane], group.x[0][k][1][lane], group.x[0][k][2][lane]);
+    q.end[k] = Eigen::Vector3d(group.x[1][k][0][lane], group.x[1][k][1][lane], group.x[1][k][2][lane]);
+  }
+  return q;
+}
+
+// The pairs of `block`, straight from its lane groups, kLanes lanes at a time.
 [[gnu::always_inline]] inline void blocks(const ccd::PairBlock& block, std::size_t features, PairFeatureBatch& batch) {
   const auto count = static_cast<std::size_t>(block.size());
-  std::size_t row[kLanes];
+  double out[kMaxPairFeatures][kLanes];
   for (std::size_t first = 0; first < count; first += kLanes) {
     const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
-    for (int l = 0; l < used; ++l) row[l] = first + static_cast<std::size_t>(l);
-    group_rows(block.group(static_cast<int>(first / kLanes)), used, row, features, count, batch);
+    const ccd::PairLanes& group = block.group(static_cast<int>(first / kGroupLanes));
+    const int lane = static_cast<int>(first % kGroupLanes);
+    block_features(positions_of(group, lane), features, out);
+    write_rows(
+        out, used, [&](int l) { return first + static_cast<std::size_t>(l); },
+        [&](int l) { return lane_query(group, lane + l); }, features, count, batch);
   }
 }
 
-// The pairs of `pairs`, each kind's in lane groups in order.
+// The pairs of `pairs` (of either kind), gathered kLanes at a time.
 [[gnu::always_inline]] inline void blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
                                           PairFeatureBatch& batch) {
-  ccd::PairLanes group;
-  std::size_t row[kLanes];
-  const auto flush = [&]() {
-    if (group.count == 0) return;
-    group.pad_unused();
-    group_rows(group, group.count, row, features, count, batch);
-    group.count = 0;
-  };
-  for (const PairKind kind : {PairKind::VertexFace, PairKind::EdgeEdge}) {
-    group.kind = kind;
-    for (std::size_t i = 0; i < count; ++i) {
-      if (pairs[i].kind != kind) continue;
-      row[group.count] = i;
-      group.set(group.count++, pairs[i]);
-      if (group.count == kLanes) flush();
+  double out[kMaxPairFeatures][kLanes];
+  for (std::size_t first = 0; first < count; first += kLanes) {
+    const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
+    GroupPositions b;
+    for (int l = 0; l < kLanes; ++l) {
+      const ccd::CcdQuery& p = pairs[first + static_cast<std::size_t>(l < used ? l : 0)];
+      for (int k = 0; k < 4; ++k) {
+        for (int c = 0; c < 3; ++c) {
+          b.x[0][k].c[c].v[l] = p.start[k][c];
+          b.x[1][k].c[c].v[l] = p.end[k][c];
+        }
+      }
+      b.is_edge_edge.v[l] = p.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
     }
-    flush();
+    block_features(b, features, out);
+    write_rows(
+        out, used, [&](int l) { return first + static_cast<std::size_t>(l); },
+        [&](int l) -> const ccd::CcdQuery& { return pairs[first + static_cast<std::size_t>(l)]; }, features, count,
+        batch);
   }
 }
 
