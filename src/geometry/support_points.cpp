@@ -108,9 +108,7 @@ void SupportPoints::group_min_max(std::size_t g, const Eigen::Vector3d& directio
 
 std::pair<double, double> SupportPoints::min_max_dot(const Eigen::Vector3d& direction) const {
   if (scan_count_ > 0) {  // only where the CPU runs AVX2 (see the constructor): never off x86-64
-    const double* x = coordinates_.data();
-    return CLOTHCD_SIMD_DISPATCH_WIDE(SimdLevel::Avx2,
-                                      scan_min_max(x, x + scan_count_, x + 2 * scan_count_, scan_count_, direction),
+    return CLOTHCD_SIMD_DISPATCH_WIDE(SimdLevel::Avx2, scan_min_max(coordinates_.data(), scan_count_, direction),
                                       std::make_pair(0.0, 0.0));
   }
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
