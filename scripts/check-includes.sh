@@ -7,7 +7,11 @@
 # The private headers of support (src/support/, e.g. the vector layer simd.hpp) serve every area of src/; a public
 # header includes no private header at all. No public header may reach a compiler intrinsics header (immintrin.h,
 # emmintrin.h, arm_neon.h, ...) or name vector-extension types: the SIMD code stays inside src/ (Eigen, a dependency,
-# includes its own). Usage: scripts/check-includes.sh [SOURCE_DIR]
+# includes its own). Instruction sets have one seam: only src/support/simd.hpp, simd_versions.hpp and simd_level.cpp
+# may name the target macros (CLOTHCD_SIMD_X86, CLOTHCD_SIMD_AVX2, CLOTHCD_SIMD_BEGIN_*, CLOTHCD_SIMD_END), a target
+# attribute or pragma, or a compiler's instruction-set macro (__AVX2__, __SSE2__, __ARM_NEON, ...); every other file
+# writes its kernels on the vector layer and dispatches through simd_versions.hpp.
+# Usage: scripts/check-includes.sh [SOURCE_DIR]
 set -euo pipefail
 root="${1:-$(cd "$(dirname "$0")/.." && pwd)}"
 cd "$root"
@@ -75,8 +79,16 @@ while IFS= read -r hit; do
   failures=$((failures + 1))
 done < <(grep -rnE '#[[:space:]]*include[[:space:]]*<[a-z0-9_]*(intrin|mmintrin|neon|sve|altivec|vecintrin)[a-z0-9_]*\.h>|vector_size|__m(64|128|256|512)|ext_vector_type' include || true)
 
+# Instruction-set names outside the seam.
+while IFS= read -r hit; do
+  echo "$hit: names an instruction set outside the seam (src/support/simd.hpp, simd_versions.hpp, simd_level.cpp)" >&2
+  failures=$((failures + 1))
+done < <(grep -rnE 'CLOTHCD_SIMD_(X86|AVX2|AVX512|BEGIN_[A-Z0-9_]*|END)\b|target[[:space:]]*\(|__(AVX|SSE|ARM_NEON|FMA|BMI)[A-Z0-9_]*__|#[[:space:]]*include[[:space:]]*<[a-z0-9_]*(intrin|neon)[a-z0-9_]*\.h>' \
+  src include tools python tests bench fuzz --include='*.hpp' --include='*.cpp' --include='*.h' --include='*.cc' \
+  | grep -vE '^src/support/(simd\.hpp|simd_versions\.hpp|simd_level\.cpp):' || true)
+
 if ((failures)); then
-  echo "check-includes: $failures include(s) against the area graph" >&2
+  echo "check-includes: $failures include(s) or instruction-set name(s) against the rules" >&2
   exit 1
 fi
-echo "check-includes: the area graph holds"
+echo "check-includes: the area graph and the instruction-set seam hold"

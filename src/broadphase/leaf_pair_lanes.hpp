@@ -1,6 +1,6 @@
-// The leaf-pair kernels of leaf_pairs.cpp, written once on the vector layer (support/simd.hpp) and included there once
-// per width: inside a namespace that names the width's operations `lanes` (simd::w4 or simd::w8), after the
-// standard headers and the width-independent helpers (Range, vertex_range, edge_range, packed_leaf_box, exclude_none).
+// The leaf-pair kernels of leaf_pairs.cpp, written once on the vector layer (support/simd.hpp) and compiled there
+// once per level by support/simd_versions.hpp (four lanes at the baseline, eight from AVX2 up), after the standard
+// headers and the width-independent helpers (Range, vertex_range, edge_range, packed_leaf_box, exclude_none).
 // No include guard and no includes of its own, on purpose.
 
 // The lane tests on packed data, as bits (bit k for position j + k).
@@ -32,14 +32,14 @@ inline unsigned below(unsigned bits, int j, int end) { return lanes::bits_below(
 
 // For each lane mask: the passing lanes in order, as bytes (padded with lane 0), and how many there are.
 struct PassingLanes {
-  std::array<std::array<std::uint8_t, lanes::kWidth>, (1u << lanes::kWidth)> lanes{};
-  std::array<int, (1u << lanes::kWidth)> count{};
+  std::array<std::array<std::uint8_t, lanes::kFloatLanes>, (1u << lanes::kFloatLanes)> lanes{};
+  std::array<int, (1u << lanes::kFloatLanes)> count{};
 };
 
 constexpr PassingLanes make_passing_lanes() {
   PassingLanes table;
-  for (unsigned mask = 0; mask < (1u << lanes::kWidth); ++mask) {
-    for (int lane = 0; lane < lanes::kWidth; ++lane) {
+  for (unsigned mask = 0; mask < (1u << lanes::kFloatLanes); ++mask) {
+    for (int lane = 0; lane < lanes::kFloatLanes; ++lane) {
       if ((mask >> lane) & 1u) table.lanes[mask][table.count[mask]++] = static_cast<std::uint8_t>(lane);
     }
   }
@@ -48,22 +48,22 @@ constexpr PassingLanes make_passing_lanes() {
 
 constexpr PassingLanes kPassingLanes = make_passing_lanes();
 
-// Writes j + k for each set bit k of `mask` to out (all kWidth slots written) and returns how many are set.
+// Writes j + k for each set bit k of `mask` to out (all kFloatLanes slots written) and returns how many are set.
 inline int write_passing(unsigned mask, int j, int* out) {
   lanes::widen_add(kPassingLanes.lanes[mask].data(), j, out);
   return kPassingLanes.count[mask];
 }
 
 // Writes the positions j in [begin, end) whose bit is set in `bits(j)` (bit k for position j + k, evaluated
-// lanes::kWidth positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent
+// lanes::kFloatLanes positions at a time) to `out` (grown as needed) and returns how many, without a data-dependent
 // branch: each group's mask indexes a table of its passing lanes, every slot of the group is written, and the count
 // advances by the number set.
 template <class Bits>
 int select_lanes(int begin, int end, std::vector<int>& out, const Bits& bits) {
-  const auto needed = static_cast<std::size_t>(end - begin + lanes::kWidth);
+  const auto needed = static_cast<std::size_t>(end - begin + lanes::kFloatLanes);
   if (out.size() < needed) out.resize(needed);
   int n = 0;
-  for (int j = begin; j < end; j += lanes::kWidth) n += write_passing(below(bits(j), j, end), j, &out[n]);
+  for (int j = begin; j < end; j += lanes::kFloatLanes) n += write_passing(below(bits(j), j, end), j, &out[n]);
   return n;
 }
 
@@ -74,14 +74,14 @@ int select_packed(const PackedBoxes& boxes, int begin, int end, const PackedBox&
 }
 
 // Writes the positions j in [begin, end) that pass both tests to `out` (grown as needed) and returns how many:
-// `bits(j)`, lanes::kWidth positions at a time on packed data (bit k for position j + k; it may pass pairs that
+// `bits(j)`, lanes::kFloatLanes positions at a time on packed data (bit k for position j + k; it may pass pairs that
 // `confirm` rejects, never the reverse), then `confirm(j)`, the exact test, on the rare passes. (Here most groups pass
 // nothing, so a loop over the set bits costs less than select_lanes' table writes.)
 template <class Bits, class Confirm>
 int collect_packed(int begin, int end, std::vector<int>& out, const Bits& bits, const Confirm& confirm) {
   if (out.size() < static_cast<std::size_t>(end - begin)) out.resize(static_cast<std::size_t>(end - begin));
   int n = 0;
-  for (int j = begin; j < end; j += lanes::kWidth) {
+  for (int j = begin; j < end; j += lanes::kFloatLanes) {
     unsigned mask = below(bits(j), j, end);
     while (mask != 0) {
       const int k = j + __builtin_ctz(mask);
@@ -96,7 +96,7 @@ int collect_packed(int begin, int end, std::vector<int>& out, const Bits& bits, 
 // The part of `range` from the first to the last position whose packed box may overlap `q` (empty when none may).
 Range near_span(const PackedBoxes& boxes, Range range, const PackedBox& q) {
   int first = range.end, last = range.begin - 1;
-  for (int j = range.begin; j < range.end; j += lanes::kWidth) {
+  for (int j = range.begin; j < range.end; j += lanes::kFloatLanes) {
     const unsigned bits = below(overlap_bits(boxes, j, q), j, range.end);
     if (bits == 0) continue;
     if (first == range.end) first = j + __builtin_ctz(bits);
@@ -106,7 +106,7 @@ Range near_span(const PackedBoxes& boxes, Range range, const PackedBox& q) {
 }
 
 // Pairs each selected primitive i of a first set (scratch.selected[0..selected), positions in its tree-ordered arrays)
-// with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes lanes::kWidth at a
+// with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes lanes::kFloatLanes at a
 // time, minus the lanes whose bits excluded_for(i)(j) sets (pairs that must not be produced), then the
 // double-precision boxes. Calls emit(i, j) for each pair found and returns how many primitive pairs it looked at.
 template <class RangeOf, class ExcludedFor, class Emit>
@@ -130,10 +130,10 @@ long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, 
   return looked_at;
 }
 
-// Primitive tests of two leaves of different bodies, lanes::kWidth at a time. Boxes are read in tree order
+// Primitive tests of two leaves of different bodies, lanes::kFloatLanes at a time. Boxes are read in tree order
 // (contiguous per leaf); each primitive is first tested against the other leaf's box.
 // With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
-void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
+CLOTHCD_SIMD_ENTRY void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
                        CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
@@ -197,10 +197,10 @@ void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const s
       [&](int i, int j) { out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]}); });
 }
 
-// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself, lanes::kWidth at a
+// Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself, lanes::kFloatLanes at a
 // time. Each primitive is first tested against the other leaf's box; a pair passes when the boxes overlap and no
 // vertex is shared. With `moved` (flags per vertex), only pairs with a moved vertex are produced.
-void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
+CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
                       TraversalStats& stats, LeafScratch& scratch) {
   const Bvh& t = *body.bvh;
   const BvhNode& la = t.nodes()[na];
@@ -263,8 +263,8 @@ void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* move
       });
 }
 
-// leaf_primitives_overlapping, lanes::kWidth primitives at a time.
-int overlapping_lanes(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box, const PackedBox& packed,
+// leaf_primitives_overlapping, lanes::kFloatLanes primitives at a time.
+CLOTHCD_SIMD_ENTRY int overlapping_lanes(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box, const PackedBox& packed,
                        LeafScratch& scratch, std::vector<int>& out) {
   const BvhNode& node = bvh.nodes()[leaf];
   const Range range = kind == LeafPrimitives::Vertices ? vertex_range(bvh, node)

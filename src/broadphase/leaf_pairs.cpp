@@ -46,109 +46,39 @@ auto exclude_none(int) {
   return [](int) { return 0u; };
 }
 
-// The kernels, once per width: four lanes (the baseline), and eight compiled for AVX2.
-namespace four {
-namespace lanes = simd::w4;
-#include "broadphase/leaf_pair_lanes.hpp"
-}  // namespace four
-
-#if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_BEGIN_AVX2
-namespace eight {
-namespace lanes = simd::w8;
-#include "broadphase/leaf_pair_lanes.hpp"
-}  // namespace eight
-
-// The entry points of the eight-lane kernels, with every call inlined into them (so that no AVX2 code leaks into
-// inline functions shared with the baseline).
-__attribute__((flatten)) void between_wide(const BodyView& a, const BodyView& b, int na, int nb,
-                                           const std::uint8_t* moved, CandidateSet& out, TraversalStats& stats,
-                                           LeafScratch& scratch) {
-  eight::between_lanes(a, b, na, nb, moved, out, stats, scratch);
-}
-
-__attribute__((flatten)) void within_wide(const BodyView& body, int na, int nb, const std::uint8_t* moved,
-                                          CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
-  eight::within_lanes(body, na, nb, moved, out, stats, scratch);
-}
-
-__attribute__((flatten)) int overlapping_wide(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
-                                              const PackedBox& packed, LeafScratch& scratch, std::vector<int>& out) {
-  return eight::overlapping_lanes(bvh, leaf, kind, box, packed, scratch, out);
-}
-
-unsigned overlap_bits_wide(const PackedBoxes& boxes, int j, const PackedBox& q) {
-  return eight::overlap_bits(boxes, j, q);
-}
-
-unsigned edge_uses_bits_wide(const PackedVertexIds& ids, int j, int v, int w) {
-  return eight::edge_uses_bits(ids, j, v, w);
-}
-
-unsigned face_uses_bits_wide(const PackedVertexIds& ids, int j, int v) { return eight::face_uses_bits(ids, j, v); }
-CLOTHCD_SIMD_END
-#endif
-
-// Whether `level` runs the eight-lane kernels.
-bool eight_lanes(SimdLevel level) {
-#if defined(CLOTHCD_SIMD_X86)
-  return level >= SimdLevel::Avx2;
-#else
-  (void)level;
-  return false;
-#endif
-}
+// The kernels, once per level: four lanes at the baseline, eight from AVX2 up.
+#define CLOTHCD_SIMD_KERNEL "broadphase/leaf_pair_lanes.hpp"
+#include "support/simd_versions.hpp"
 
 }  // namespace
 
 int leaf_primitives_overlapping(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
                                 const PackedBox& packed, LeafScratch& scratch, std::vector<int>& out) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (eight_lanes(scratch.level)) return overlapping_wide(bvh, leaf, kind, box, packed, scratch, out);
-#endif
-  return four::overlapping_lanes(bvh, leaf, kind, box, packed, scratch, out);
+  return CLOTHCD_SIMD_DISPATCH(scratch.level, overlapping_lanes(bvh, leaf, kind, box, packed, scratch, out));
 }
 
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
                        CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (eight_lanes(scratch.level)) return between_wide(a, b, na, nb, moved, out, stats, scratch);
-#endif
-  four::between_lanes(a, b, na, nb, moved, out, stats, scratch);
+  CLOTHCD_SIMD_DISPATCH(scratch.level, between_lanes(a, b, na, nb, moved, out, stats, scratch));
 }
 
 void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
                       TraversalStats& stats, LeafScratch& scratch) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (eight_lanes(scratch.level)) return within_wide(body, na, nb, moved, out, stats, scratch);
-#endif
-  four::within_lanes(body, na, nb, moved, out, stats, scratch);
+  CLOTHCD_SIMD_DISPATCH(scratch.level, within_lanes(body, na, nb, moved, out, stats, scratch));
 }
 
-int packed_lane_width(SimdLevel level) { return eight_lanes(level) ? 8 : 4; }
+int packed_lane_width(SimdLevel level) { return CLOTHCD_SIMD_DISPATCH(level, lanes::kFloatLanes); }
 
 unsigned packed_overlap_bits(SimdLevel level, const PackedBoxes& boxes, int j, const PackedBox& q) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (eight_lanes(level)) return overlap_bits_wide(boxes, j, q);
-#endif
-  (void)level;
-  return four::overlap_bits(boxes, j, q);
+  return CLOTHCD_SIMD_DISPATCH(level, overlap_bits(boxes, j, q));
 }
 
 unsigned packed_edge_uses_bits(SimdLevel level, const PackedVertexIds& ids, int j, int v, int w) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (eight_lanes(level)) return edge_uses_bits_wide(ids, j, v, w);
-#endif
-  (void)level;
-  return four::edge_uses_bits(ids, j, v, w);
+  return CLOTHCD_SIMD_DISPATCH(level, edge_uses_bits(ids, j, v, w));
 }
 
 unsigned packed_face_uses_bits(SimdLevel level, const PackedVertexIds& ids, int j, int v) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (eight_lanes(level)) return face_uses_bits_wide(ids, j, v);
-#endif
-  (void)level;
-  return four::face_uses_bits(ids, j, v);
+  return CLOTHCD_SIMD_DISPATCH(level, face_uses_bits(ids, j, v));
 }
 
 }  // namespace clothcd::broadphase::detail

@@ -32,11 +32,10 @@ inline float round_up(double x) {
   return x < 0.0 ? -kBelowLargeBound : kInfinity;
 }
 
-#if defined(CLOTHCD_SIMD_X86)
 // Four bounds x[0..3] rounded outwards (kUpper: up, else down) into out[0..3]: round_up/round_down with selects
 // instead of branches, bit for bit the same floats.
 template <bool kUpper>
-void round_four(const double* x, float* out) {
+[[gnu::always_inline]] inline void round_four(const double* x, float* out) {
   using Doubles4 = simd::F64x4;
   using Floats4 = simd::F32x4;
   constexpr double kInfinityDouble = std::numeric_limits<double>::infinity();
@@ -53,9 +52,9 @@ void round_four(const double* x, float* out) {
   std::memcpy(out, &rounded, sizeof rounded);
 }
 
-// The six rows of boxes [0, n) four boxes at a time with AVX2 (rows of `stride` floats from `r`); returns how many
-// boxes it wrote (a multiple of four).
-CLOTHCD_SIMD_AVX2 __attribute__((flatten)) int round_rows_avx2(const FlatBox* boxes, int n, float* r, int stride) {
+// The six rows of boxes [0, n) four boxes at a time (rows of `stride` floats from `r`); returns how many boxes it wrote
+// (a multiple of four).
+[[gnu::always_inline]] inline int round_rows(const FlatBox* boxes, int n, float* r, int stride) {
   int j = 0;
   for (; j + 4 <= n; j += 4) {
     const FlatBox* b = boxes + j;
@@ -68,7 +67,11 @@ CLOTHCD_SIMD_AVX2 __attribute__((flatten)) int round_rows_avx2(const FlatBox* bo
   }
   return j;
 }
-#endif
+
+// round_rows compiled for AVX2 (the baseline rounds box by box below).
+#define CLOTHCD_SIMD_KERNEL_FUNCTION round_rows
+#define CLOTHCD_SIMD_KERNEL_WIDE
+#include "support/simd_versions.hpp"
 
 }  // namespace
 
@@ -86,10 +89,7 @@ void PackedBoxes::assign(const std::vector<FlatBox>& boxes) {
   stride_ = size_ + kPackedPadding;
   rows_.resize(6 * static_cast<std::size_t>(stride_));
   float* r = rows_.data();
-  int j = 0;
-#if defined(CLOTHCD_SIMD_X86)
-  if (simd_level() >= SimdLevel::Avx2) j = round_rows_avx2(boxes.data(), size_, r, stride_);
-#endif
+  int j = CLOTHCD_SIMD_DISPATCH_WIDE(simd_level(), run_kernel(boxes.data(), size_, r, stride_), 0);
   for (; j < size_; ++j) {
     const FlatBox& b = boxes[j];
     for (int k = 0; k < 3; ++k) {

@@ -15,6 +15,7 @@
 
 #include "support/simd.hpp"
 
+
 namespace clothcd::ccd::detail {
 
 namespace {
@@ -25,7 +26,7 @@ constexpr double kTiny = 1e-300;
 constexpr double kLargest = 1e100;
 constexpr double kNormSlack = 1.0 + 1e-12;
 
-using Lanes = double[kLanes];
+using Lanes = simd::LaneArray<kLanes>;
 
 // Lambdas do not take the target attribute (AVX2, AVX-512) of the function they are written in, and GCC may leave one
 // out of line even inside a `flatten` function: those of the filter are forced inline, so that none is compiled for
@@ -179,7 +180,7 @@ template <bool VertexFace, bool Thick>
 
 #undef INLINE_LAMBDA
 
-// The template for the block's kind and for thickness 0 or not; inlined into each instruction set's function below.
+// The template for the block's kind and for thickness 0 or not; compiled for each level below.
 [[gnu::always_inline]] inline void filter_any(const PairLanes& b, double thickness, PassDirections pass,
                                               std::uint8_t* out) {
   if (thickness > 0.0) {
@@ -190,23 +191,11 @@ template <bool VertexFace, bool Thick>
   filter_block<false, false>(b, thickness, pass, out);
 }
 
-// Both kinds on every instruction set: the same template inlined into functions compiled for each (the template runs
-// the same IEEE operations everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
-void filter_baseline(const PairLanes& b, double thickness, PassDirections pass, std::uint8_t* out) {
-  filter_any(b, thickness, pass, out);
-}
-
-#if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_AVX2 void filter_avx2(const PairLanes& b, double thickness, PassDirections pass,
-                                                 std::uint8_t* out) {
-  filter_any(b, thickness, pass, out);
-}
-
-CLOTHCD_SIMD_AVX512 void filter_avx512(const PairLanes& b, double thickness, PassDirections pass,
-                                                      std::uint8_t* out) {
-  filter_any(b, thickness, pass, out);
-}
-#endif
+// Both kinds on every level: the same template compiled for each (the template runs the same IEEE operations
+// everywhere, so all give the same verdicts; tests compare each with the per-pair filter).
+#define CLOTHCD_SIMD_KERNEL_FUNCTION filter_any
+#define CLOTHCD_SIMD_KERNEL_AVX512
+#include "support/simd_versions.hpp"
 
 }  // namespace
 
@@ -220,18 +209,7 @@ void projection_filter_block(const PairLanes& block, const CcdSettings& settings
   const bool normals = options.use_primitive_normals;
   const PassDirections directions{normals && pass != BlockPass::AfterNormals, pass != BlockPass::Normals,
                                   normals && pass != BlockPass::Normals};
-#if defined(CLOTHCD_SIMD_X86)
-  if (level == SimdLevel::Avx512) {
-    filter_avx512(block, settings.thickness, directions, culled);
-  } else if (level == SimdLevel::Avx2) {
-    filter_avx2(block, settings.thickness, directions, culled);
-  } else {
-    filter_baseline(block, settings.thickness, directions, culled);
-  }
-#else
-  (void)level;
-  filter_baseline(block, settings.thickness, directions, culled);
-#endif
+  CLOTHCD_SIMD_DISPATCH(level, run_kernel(block, settings.thickness, directions, culled));
 }
 
 void projection_filter_queries(const std::vector<CcdQuery>& queries, const CcdSettings& settings,

@@ -135,34 +135,23 @@ Eigen::Vector3d area_weighted_centre(const Vertices& v, const Faces& faces) {
 // row.
 using FaceMoments = std::array<double, 9>;
 
-#if defined(CLOTHCD_SIMD_X86)
-// sum_moments four entries at a time: every entry summed in the same order.
-CLOTHCD_SIMD_AVX2 FaceMoments sum_moments_avx2(const FaceMoments* moments, const int* faces, size_t count) {
-  simd::d4::Doubles low = simd::d4::splat(0.0), high = low;
-  double last = 0.0;
-  for (size_t j = 0; j < count; ++j) {
-    const double* m = moments[faces[j]].data();
-    low = low + simd::d4::load(m);
-    high = high + simd::d4::load(m + 4);
-    last += m[8];
-  }
-  FaceMoments total;
-  simd::d4::store(total.data(), low);
-  simd::d4::store(total.data() + 4, high);
-  total[8] = last;
-  return total;
-}
-#endif
+// The wide kernels: sum_moments and move_rows on four double lanes.
+#define CLOTHCD_SIMD_KERNEL "geometry/obb_lanes.hpp"
+#define CLOTHCD_SIMD_KERNEL_WIDE
+#include "support/simd_versions.hpp"
 
-// The sum of moments[faces[j]] over j < count, entry by entry.
-FaceMoments sum_moments(const FaceMoments* moments, const int* faces, size_t count) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (simd_level() >= SimdLevel::Avx2) return sum_moments_avx2(moments, faces, count);
-#endif
+// The sum of moments[faces[j]] over j < count, entry by entry: the baseline.
+FaceMoments sum_moments_baseline(const FaceMoments* moments, const int* faces, size_t count) {
   FaceMoments total{};
   for (size_t j = 0; j < count; ++j)
     for (size_t k = 0; k < total.size(); ++k) total[k] += moments[faces[j]][k];
   return total;
+}
+
+// The sum of moments[faces[j]] over j < count, entry by entry, at simd_level().
+FaceMoments sum_moments(const FaceMoments* moments, const int* faces, size_t count) {
+  return CLOTHCD_SIMD_DISPATCH_WIDE(simd_level(), sum_moments(moments, faces, count),
+                                    sum_moments_baseline(moments, faces, count));
 }
 
 // What a rigidly moving model can reuse between rebuilds: the centre of eqs. 11-14 moves with the model, and each
@@ -287,41 +276,21 @@ Eigen::Matrix3d adaptive_axes(const Vertices& v, const Faces& faces, const ObbSe
   return refine_axes(scratch.kept, axes, scratch);
 }
 
-#if defined(CLOTHCD_SIMD_X86)
-// Row p moved: the three coordinates in one register (the fourth lane unused), with move_rows's products and sums.
-[[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline simd::d4::Doubles moved_row(const double* p,
-                                                                          const simd::d4::Doubles column[3],
-                                                                          simd::d4::Doubles shift) {
-  using simd::d4::splat;
-  return (column[0] * splat(p[0]) + (column[1] * splat(p[1]) + column[2] * splat(p[2]))) + shift;
+// Rows [0, rows) of `from` moved by r and t into `to`: the baseline of move_rows.
+void move_rows_baseline(const double* from, Eigen::Index rows, const Eigen::Matrix3d& r, const Eigen::Vector3d& t,
+                        double* to) {
+  for (Eigen::Index i = 0; i < rows; ++i, from += 3, to += 3) {
+    for (int k = 0; k < 3; ++k) to[k] = r(k, 0) * from[0] + (r(k, 1) * from[1] + r(k, 2) * from[2]) + t[k];
+  }
 }
-
-CLOTHCD_SIMD_AVX2 void move_rows_avx2(const double* from, Eigen::Index rows, const Eigen::Matrix3d& r,
-                                      const Eigen::Vector3d& t, double* to) {
-  if (rows == 0) return;
-  using simd::d4::make;
-  const simd::d4::Doubles column[3] = {make(r(0, 0), r(1, 0), r(2, 0), 0.0), make(r(0, 1), r(1, 1), r(2, 1), 0.0),
-                                       make(r(0, 2), r(1, 2), r(2, 2), 0.0)};
-  const simd::d4::Doubles shift = make(t[0], t[1], t[2], 0.0);
-  // Four doubles stored per row: the fourth lands on the next row's x, which that row then overwrites.
-  for (Eigen::Index i = 0; i + 1 < rows; ++i, from += 3, to += 3) simd::d4::store(to, moved_row(from, column, shift));
-  simd::d4::store3(to, moved_row(from, column, shift));
-}
-#endif
 
 // moved = rest moved by pose (same shape). Row by row, summed in the order of the Eigen expression
 // (rest R^T).rowwise() + t (bitwise the same coordinates), which evaluated the product into a heap temporary.
 void move_rows(const Vertices& rest, const Eigen::Isometry3d& pose, Vertices& moved) {
   const Eigen::Matrix3d r = pose.linear();
   const Eigen::Vector3d t = pose.translation();
-  const double* from = rest.data();
-  double* to = moved.data();
-#if defined(CLOTHCD_SIMD_X86)
-  if (simd_level() >= SimdLevel::Avx2) return move_rows_avx2(from, rest.rows(), r, t, to);
-#endif
-  for (Eigen::Index i = 0; i < rest.rows(); ++i, from += 3, to += 3) {
-    for (int k = 0; k < 3; ++k) to[k] = r(k, 0) * from[0] + (r(k, 1) * from[1] + r(k, 2) * from[2]) + t[k];
-  }
+  CLOTHCD_SIMD_DISPATCH_WIDE(simd_level(), move_rows(rest.data(), rest.rows(), r, t, moved.data()),
+                             move_rows_baseline(rest.data(), rest.rows(), r, t, moved.data()));
 }
 
 Eigen::Matrix3d tight_axes(const Vertices& vertices) {

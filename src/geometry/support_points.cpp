@@ -33,31 +33,10 @@ void split(std::vector<Eigen::Vector3d>& points, int begin, int end, int group_s
   split(points, middle, end, group_size, starts);
 }
 
-#if defined(CLOTHCD_SIMD_X86)
-
-// {min, max} of x[i] dx + y[i] dy + z[i] dz over i < count (a multiple of 4), four points at a time, each product
-// summed in the order of Eigen's dot product of the point with the direction, so the values are those of a scan.
-CLOTHCD_SIMD_AVX2 std::pair<double, double> scan_min_max(const double* x, const double* y, const double* z,
-                                                         size_t count, const Eigen::Vector3d& direction) {
-  using simd::d4::Doubles;
-  using simd::d4::load;
-  const Doubles dx = simd::d4::splat(direction.x()), dy = simd::d4::splat(direction.y()),
-                dz = simd::d4::splat(direction.z());
-  Doubles lo = simd::d4::splat(std::numeric_limits<double>::infinity());
-  Doubles hi = simd::d4::splat(-std::numeric_limits<double>::infinity());
-  for (size_t i = 0; i < count; i += 4) {
-    const Doubles dot = (load(x + i) * dx + load(y + i) * dy) + load(z + i) * dz;
-    lo = simd::d4::min(lo, dot);
-    hi = simd::d4::max(hi, dot);
-  }
-  double low[4], high[4];
-  simd::d4::store(low, lo);
-  simd::d4::store(high, hi);
-  return {std::min(std::min(low[0], low[1]), std::min(low[2], low[3])),
-          std::max(std::max(high[0], high[1]), std::max(high[2], high[3]))};
-}
-
-#endif
+// The wide kernel: the scan of every point on four double lanes.
+#define CLOTHCD_SIMD_KERNEL "geometry/support_points_lanes.hpp"
+#define CLOTHCD_SIMD_KERNEL_WIDE
+#include "support/simd_versions.hpp"
 
 }  // namespace
 
@@ -128,12 +107,10 @@ void SupportPoints::group_min_max(std::size_t g, const Eigen::Vector3d& directio
 }
 
 std::pair<double, double> SupportPoints::min_max_dot(const Eigen::Vector3d& direction) const {
-#if defined(CLOTHCD_SIMD_X86)
-  if (scan_count_ > 0) {
-    const double* x = coordinates_.data();
-    return scan_min_max(x, x + scan_count_, x + 2 * scan_count_, scan_count_, direction);
+  if (scan_count_ > 0) {  // only where the CPU runs AVX2 (see the constructor): never off x86-64
+    return CLOTHCD_SIMD_DISPATCH_WIDE(SimdLevel::Avx2, scan_min_max(coordinates_.data(), scan_count_, direction),
+                                      std::make_pair(0.0, 0.0));
   }
-#endif
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   const size_t groups = centre_.size();
   if (groups == 0) return {lo, hi};

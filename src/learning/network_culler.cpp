@@ -14,6 +14,9 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "clothcd/simd_level.hpp"
+#include "learning/pair_feature_block.hpp"
+
 namespace clothcd::learning {
 namespace {
 
@@ -35,7 +38,6 @@ CullVerdict verdict_of(PairDecision decision) {
 
 // A thread's scratch of NetworkCuller::cull on a block.
 struct BlockScratch final : PairCuller::Scratch {
-  std::vector<ccd::CcdQuery> queries;
   PairFeatureBatch features;
   std::vector<PairDecision> decisions;
 };
@@ -98,10 +100,12 @@ std::unique_ptr<PairCuller::Scratch> NetworkCuller::make_scratch() const { retur
 void NetworkCuller::cull(const ccd::PairBlock& block, Scratch& scratch, CullVerdict* verdicts) const {
   BlockScratch& s = static_cast<BlockScratch&>(scratch);
   const std::size_t n = static_cast<std::size_t>(block.size());
-  s.queries.resize(n);
   s.decisions.resize(n);
-  for (std::size_t i = 0; i < n; ++i) s.queries[i] = block.query(static_cast<int>(i));
-  decide(s.queries.data(), n, s.features, s.decisions.data());
+  // The features straight from the block's lane groups (the same values as compute_pair_features on its queries).
+  const std::size_t features = std::min(features_.count, kMaxPairFeatures);
+  s.features.resize(n, features);
+  detail::compute_feature_blocks(block, features, simd_level(), s.features);
+  classifier_.decide(s.features, s.decisions.data());
   for (std::size_t i = 0; i < n; ++i) verdicts[i] = verdict_of(s.decisions[i]);
 }
 

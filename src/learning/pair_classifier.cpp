@@ -125,36 +125,15 @@ namespace {
   for (std::size_t i = 0; i < n; ++i) out[i] = clamp_probability(in[0][i]);
 }
 
-// forward_rows built for the baseline, AVX2 and AVX-512: the same IEEE operations in the same order (the library is
-// built without contraction into fused multiply-adds), so the same probabilities, more rows per instruction.
-void forward_baseline(const NetworkWeights& weights, const std::vector<std::size_t>& input_columns,
-                      const PairFeatureBatch& batch, std::size_t begin, std::size_t n, double* out) {
-  forward_rows(weights, input_columns, batch, begin, n, out);
-}
-
-#if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_AVX2 void forward_avx2(const NetworkWeights& weights,
-                                                  const std::vector<std::size_t>& input_columns,
-                                                  const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
-                                                  double* out) {
-  forward_rows(weights, input_columns, batch, begin, n, out);
-}
-
-CLOTHCD_SIMD_AVX512 void forward_avx512(const NetworkWeights& weights,
-                                                       const std::vector<std::size_t>& input_columns,
-                                                       const PairFeatureBatch& batch, std::size_t begin, std::size_t n,
-                                                       double* out) {
-  forward_rows(weights, input_columns, batch, begin, n, out);
-}
-#endif
+// forward_rows compiled for the baseline, AVX2 and AVX-512: the same IEEE operations in the same order (the library
+// is built without contraction into fused multiply-adds), so the same probabilities, more rows per instruction.
+#define CLOTHCD_SIMD_KERNEL_FUNCTION forward_rows
+#define CLOTHCD_SIMD_KERNEL_AVX512
+#include "support/simd_versions.hpp"
 
 void forward_block(const NetworkWeights& weights, const std::vector<std::size_t>& input_columns,
                    const PairFeatureBatch& batch, std::size_t begin, std::size_t n, double* out) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (simd_level() == SimdLevel::Avx512) return forward_avx512(weights, input_columns, batch, begin, n, out);
-  if (simd_level() >= SimdLevel::Avx2) return forward_avx2(weights, input_columns, batch, begin, n, out);
-#endif
-  forward_baseline(weights, input_columns, batch, begin, n, out);
+  CLOTHCD_SIMD_DISPATCH(simd_level(), run_kernel(weights, input_columns, batch, begin, n, out));
 }
 
 }  // namespace

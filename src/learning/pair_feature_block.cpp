@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "clothcd/simd_level.hpp"
@@ -15,81 +16,37 @@
 namespace clothcd::learning::detail {
 namespace {
 
+// Lanes per kernel step: half a ccd::PairLanes group.
 constexpr int kLanes = 8;
+constexpr int kGroupLanes = ccd::PairLanes::kLanes;
+static_assert(kGroupLanes % kLanes == 0, "a lane group splits into whole kernel steps");
 
-// One double per lane, with the element-wise operations the features need.
-struct Lanes {
-  double v[kLanes];
-};
+// One double per lane, and a 3-vector per lane, with the vector layer's element-wise operations.
+using Lanes = simd::LaneArray<kLanes>;
+using Vec3 = simd::LaneVector3<kLanes>;
 
-[[gnu::always_inline]] inline Lanes operator+(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] + b.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator-(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] - b.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator*(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] * b.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator*(double s, const Lanes& a) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = s * a.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes operator/(const Lanes& a, double s) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] / s;
-  return r;
-}
-[[gnu::always_inline]] inline Lanes lane_min(const Lanes& a, const Lanes& b) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = b.v[l] < a.v[l] ? b.v[l] : a.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes lane_max(const Lanes& a, const Lanes& b) {  // std::max(a, b)
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
-  return r;
-}
-[[gnu::always_inline]] inline Lanes lane_sqrt(const Lanes& a) {
-  Lanes r;
-  for (int l = 0; l < kLanes; ++l) r.v[l] = std::sqrt(a.v[l]);
-  return r;
-}
 [[gnu::always_inline]] inline Lanes lane_cbrt(const Lanes& a) {
   Lanes r;
   for (int l = 0; l < kLanes; ++l) r.v[l] = cube_root(a.v[l]);
   return r;
 }
 
-struct Vec3 {
-  Lanes c[3];
-};
-
-[[gnu::always_inline]] inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {{a.c[0] + b.c[0], a.c[1] + b.c[1], a.c[2] + b.c[2]}}; }
-[[gnu::always_inline]] inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}}; }
-[[gnu::always_inline]] inline Vec3 operator*(double s, const Vec3& a) { return {{s * a.c[0], s * a.c[1], s * a.c[2]}}; }
-[[gnu::always_inline]] inline Vec3 operator/(const Vec3& a, double s) { return {{a.c[0] / s, a.c[1] / s, a.c[2] / s}}; }
-[[gnu::always_inline]] inline Lanes dot(const Vec3& a, const Vec3& b) { return (a.c[0] * b.c[0] + a.c[1] * b.c[1]) + a.c[2] * b.c[2]; }
-[[gnu::always_inline]] inline Lanes dot(const Vec3& a, const double* s) {
-  return (s[0] * a.c[0] + s[1] * a.c[1]) + s[2] * a.c[2];  // the products commute exactly
-}
-[[gnu::always_inline]] inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
-}
-[[gnu::always_inline]] inline Lanes norm(const Vec3& a) { return lane_sqrt(dot(a, a)); }
-
-// The block's pairs: x[time][point], is_edge_edge per lane (1 or 0).
-struct PairBlock {
+// kLanes pairs' positions on the vector layer, x[time][point], and is_edge_edge per lane (1 or 0).
+struct GroupPositions {
   Vec3 x[2][4];
   Lanes is_edge_edge;
 };
+
+// kLanes lanes of a lane group from lane `first` on (the group's kind on every lane).
+[[gnu::always_inline]] inline GroupPositions positions_of(const ccd::PairLanes& group, int first) {
+  GroupPositions b;
+  for (int t = 0; t < 2; ++t)
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c) std::memcpy(b.x[t][k].c[c].v, group.x[t][k][c] + first, sizeof b.x[t][k].c[c].v);
+  const double edge_edge = group.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
+  for (int l = 0; l < kLanes; ++l) b.is_edge_edge.v[l] = edge_edge;
+  return b;
+}
 
 // max(smallest, -largest) of `n` lanes-values: same_sign_margin of the per-pair code.
 [[gnu::always_inline]] inline Lanes same_sign_margin(const Lanes* values, int n) {
@@ -118,7 +75,7 @@ struct GapVectors {
   Vec3 d[2][4];
 };
 
-[[gnu::always_inline]] inline GapVectors gap_vectors(const PairBlock& b) {
+[[gnu::always_inline]] inline GapVectors gap_vectors(const GroupPositions& b) {
   GapVectors g;
   for (int t = 0; t < 2; ++t) {
     const Vec3* x = b.x[t];
@@ -145,7 +102,7 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
                                   {std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0)}};
 
 // Features of one block (all lanes filled) into out[f][lane] for f < kMaxPairFeatures.
-[[gnu::always_inline]] inline void block_features(const PairBlock& b, std::size_t features,
+[[gnu::always_inline]] inline void block_features(const GroupPositions& b, std::size_t features,
                                                   double (&out)[kMaxPairFeatures][kLanes]) {
   const Vec3* s = b.x[0];
   const Vec3* e = b.x[1];
@@ -217,12 +174,62 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
   }
 }
 
-[[gnu::always_inline]] inline void blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
-                                          PairFeatureBatch& batch) {
+// Writes the features `out` of lanes [0, used) to rows row_of(l) of `batch` (its values for `count` rows); pair_of(l)
+// is lane l's pair (for the finiteness check and the extra features).
+template <class RowOf, class PairOf>
+[[gnu::always_inline]] inline void write_rows(const double (&out)[kMaxPairFeatures][kLanes], int used,
+                                              const RowOf& row_of, const PairOf& pair_of, std::size_t features,
+                                              std::size_t count, PairFeatureBatch& batch) {
   const std::size_t dense = std::min<std::size_t>(features, 15);
+  for (int l = 0; l < used; ++l) {
+    const std::size_t i = row_of(l);
+    const ccd::CcdQuery& pair = pair_of(l);
+    if (!pair_coordinates_finite(pair)) {
+      for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    for (std::size_t f = 0; f < dense; ++f) batch.values[f * count + i] = out[f][l];
+    if (features > 15) {  // the extra features, per pair
+      double extra[kMaxPairFeatures];
+      compute_pair_features(pair, FeatureSettings{features}, extra);
+      for (std::size_t f = 15; f < features; ++f) batch.values[f * count + i] = extra[f];
+    }
+  }
+}
+
+// ccd::PairLanes::query, inlined here (the lane group's own is in the core library).
+[[gnu::always_inline]] inline ccd::CcdQuery lane_query(const ccd::PairLanes& group, int lane) {
+  ccd::CcdQuery q;
+  q.kind = group.kind;
+  for (int k = 0; k < 4; ++k) {
+    q.start[k] = Eigen::Vector3d(group.x[0][k][0][lane], group.x[0][k][1][lane], group.x[0][k][2][lane]);
+    q.end[k] = Eigen::Vector3d(group.x[1][k][0][lane], group.x[1][k][1][lane], group.x[1][k][2][lane]);
+  }
+  return q;
+}
+
+// The pairs of `block`, straight from its lane groups, kLanes lanes at a time.
+[[gnu::always_inline]] inline void blocks(const ccd::PairBlock& block, std::size_t features, PairFeatureBatch& batch) {
+  const auto count = static_cast<std::size_t>(block.size());
+  double out[kMaxPairFeatures][kLanes];
   for (std::size_t first = 0; first < count; first += kLanes) {
     const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
-    PairBlock b;
+    const ccd::PairLanes& group = block.group(static_cast<int>(first / kGroupLanes));
+    const int lane = static_cast<int>(first % kGroupLanes);
+    block_features(positions_of(group, lane), features, out);
+    write_rows(
+        out, used, [&](int l) { return first + static_cast<std::size_t>(l); },
+        [&](int l) { return lane_query(group, lane + l); }, features, count, batch);
+  }
+}
+
+// The pairs of `pairs` (of either kind), gathered kLanes at a time.
+[[gnu::always_inline]] inline void blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
+                                          PairFeatureBatch& batch) {
+  double out[kMaxPairFeatures][kLanes];
+  for (std::size_t first = 0; first < count; first += kLanes) {
+    const int used = static_cast<int>(std::min<std::size_t>(kLanes, count - first));
+    GroupPositions b;
     for (int l = 0; l < kLanes; ++l) {
       const ccd::CcdQuery& p = pairs[first + static_cast<std::size_t>(l < used ? l : 0)];
       for (int k = 0; k < 4; ++k) {
@@ -233,38 +240,18 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
       }
       b.is_edge_edge.v[l] = p.kind == PairKind::EdgeEdge ? 1.0 : 0.0;
     }
-    double out[kMaxPairFeatures][kLanes];
     block_features(b, features, out);
-    for (int l = 0; l < used; ++l) {
-      const std::size_t i = first + static_cast<std::size_t>(l);
-      if (!pair_coordinates_finite(pairs[i])) {
-        for (std::size_t f = 0; f < features; ++f) batch.values[f * count + i] = std::numeric_limits<double>::quiet_NaN();
-        continue;
-      }
-      for (std::size_t f = 0; f < dense; ++f) batch.values[f * count + i] = out[f][l];
-      if (features > 15) {  // the extra features, per pair
-        double row[kMaxPairFeatures];
-        compute_pair_features(pairs[i], FeatureSettings{features}, row);
-        for (std::size_t f = 15; f < features; ++f) batch.values[f * count + i] = row[f];
-      }
-    }
+    write_rows(
+        out, used, [&](int l) { return first + static_cast<std::size_t>(l); },
+        [&](int l) -> const ccd::CcdQuery& { return pairs[first + static_cast<std::size_t>(l)]; }, features, count,
+        batch);
   }
 }
 
-void blocks_baseline(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, PairFeatureBatch& batch) {
-  blocks(pairs, count, features, batch);
-}
-
-#if defined(CLOTHCD_SIMD_X86)
-CLOTHCD_SIMD_AVX2 void blocks_avx2(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features,
-                                                 PairFeatureBatch& batch) {
-  blocks(pairs, count, features, batch);
-}
-CLOTHCD_SIMD_AVX512 void blocks_avx512(const ccd::CcdQuery* pairs, std::size_t count,
-                                                      std::size_t features, PairFeatureBatch& batch) {
-  blocks(pairs, count, features, batch);
-}
-#endif
+// Both forms of the blocks compiled for every level (the same features at each).
+#define CLOTHCD_SIMD_KERNEL_FUNCTION blocks
+#define CLOTHCD_SIMD_KERNEL_AVX512
+#include "support/simd_versions.hpp"
 
 }  // namespace
 
@@ -276,12 +263,12 @@ bool pair_coordinates_finite(const ccd::CcdQuery& pair) {
 
 void compute_feature_blocks(const ccd::CcdQuery* pairs, std::size_t count, std::size_t features, SimdLevel level,
                             PairFeatureBatch& batch) {
-#if defined(CLOTHCD_SIMD_X86)
-  if (level == SimdLevel::Avx512) return blocks_avx512(pairs, count, features, batch);
-  if (level == SimdLevel::Avx2) return blocks_avx2(pairs, count, features, batch);
-#endif
-  (void)level;
-  blocks_baseline(pairs, count, features, batch);
+  CLOTHCD_SIMD_DISPATCH(level, run_kernel(pairs, count, features, batch));
+}
+
+void compute_feature_blocks(const ccd::PairBlock& block, std::size_t features, SimdLevel level,
+                            PairFeatureBatch& batch) {
+  CLOTHCD_SIMD_DISPATCH(level, run_kernel(block, features, batch));
 }
 
 }  // namespace clothcd::learning::detail

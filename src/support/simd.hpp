@@ -1,38 +1,44 @@
 #pragma once
-// The library's fixed-width vector layer (internal; public headers never include it). A kernel is written once on it
-// and compiled for every level of clothcd::SimdLevel; the caller picks the compiled version from simd_level().
+// The library's fixed-width vector layer (internal; public headers never include it), one of the two files of the
+// instruction-set seam (the other, simd_versions.hpp, compiles a kernel once per level and dispatches to it). Only
+// these two files and simd_level.cpp name instruction sets or target options.
 //
 // Types are the compiler's vector extension (GCC and Clang, any architecture): four or eight float or 32-bit integer
 // lanes, two or four double or 64-bit integer lanes. Arithmetic and comparisons are the built-in operators (a
 // comparison gives an integer vector of lane masks, all ones or zero; the library is built without contraction, so
-// products are never fused and a kernel gives the same bits at every width). Each width's namespace (d2, w4, w8, d4) names its types and adds what
-// the operators do not say: unaligned and partial loads and stores, broadcasts, the minimum and maximum of SSE (the
-// second operand where either is NaN), selects, square roots, transposes, lane masks as bits, dropping the bits past a
-// range's end, and widening a row of lane numbers to positions.
-//
-// The eight-lane operations need AVX: they are compiled for it (CLOTHCD_SIMD_AVX2 below) and may only
-// run inside code compiled the same way. A kernel that uses them is written in a header of its own and included twice:
-// once as is, for the baseline with four lanes, and once between CLOTHCD_SIMD_BEGIN_AVX2 and CLOTHCD_SIMD_END, so that
-// every function and lambda it defines is compiled for AVX2 (see broadphase/leaf_pair_lanes.hpp).
+// products are never fused and a kernel gives the same bits at every width). Each level's lane set names its types and
+// adds what the operators do not say: unaligned and partial loads and stores, broadcasts, the minimum and maximum of
+// SSE (the second operand where either is NaN), selects, square roots, transposes, lane masks as bits, dropping the
+// bits past a range's end, and widening a row of lane numbers to positions:
+//   baseline_lanes  four floats or ints, two doubles (SSE2 on x86-64, NEON on ARM, scalar code elsewhere);
+//   avx2_lanes      eight floats or ints, four doubles (x86-64 only; its operations run only inside a kernel version
+//                   compiled for AVX2 or AVX-512, see simd_versions.hpp).
+// Kernels written lane by lane for the compiler to vectorize use LaneArray and LaneVector3 (plain arrays of lanes).
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
+
+#include "clothcd/simd_level.hpp"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 /// Defined where the AVX2 and AVX-512 versions of the kernels are compiled in (x86-64 with GCC or Clang).
 #define CLOTHCD_SIMD_X86 1
 #include <immintrin.h>
-/// Marks one function compiled for AVX2 and BMI2 (called only where simd_level() >= SimdLevel::Avx2).
+/// Marks one function of avx2_lanes compiled for AVX2 and BMI2 (inlined only into kernel versions for AVX2 or up).
 #define CLOTHCD_SIMD_AVX2 __attribute__((target("avx2,bmi2")))
-/// Marks one function compiled for AVX-512F (called only where simd_level() == SimdLevel::Avx512).
-#define CLOTHCD_SIMD_AVX512 __attribute__((target("avx2,bmi2,avx512f")))
 #if defined(__clang__)
 #define CLOTHCD_SIMD_BEGIN_AVX2 \
   _Pragma("clang attribute push(__attribute__((target(\"avx2,bmi2\"))), apply_to = function)")
+#define CLOTHCD_SIMD_BEGIN_AVX512 \
+  _Pragma("clang attribute push(__attribute__((target(\"avx2,bmi2,avx512f\"))), apply_to = function)")
 #define CLOTHCD_SIMD_END _Pragma("clang attribute pop")
 #else
 /// Every function defined from here to CLOTHCD_SIMD_END is compiled for AVX2 and BMI2.
 #define CLOTHCD_SIMD_BEGIN_AVX2 _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,bmi2\")")
-/// Ends CLOTHCD_SIMD_BEGIN_AVX2.
+/// Every function defined from here to CLOTHCD_SIMD_END is compiled for AVX-512F (with AVX2 and BMI2).
+#define CLOTHCD_SIMD_BEGIN_AVX512 _Pragma("GCC push_options") _Pragma("GCC target(\"avx2,bmi2,avx512f\")")
+/// Ends CLOTHCD_SIMD_BEGIN_AVX2 or CLOTHCD_SIMD_BEGIN_AVX512.
 #define CLOTHCD_SIMD_END _Pragma("GCC pop_options")
 #endif
 #endif
@@ -56,8 +62,9 @@ using F64x4 = double __attribute__((vector_size(32)));
 /// Four 64-bit integer lanes (the lane masks of F64x4 comparisons; AVX).
 using I64x4 = std::int64_t __attribute__((vector_size(32)));
 
-// ---- two double lanes: the baseline (interval arithmetic keeps an interval's two bounds in one vector) ----
-namespace d2 {
+// ---- the baseline's lanes: two doubles (interval arithmetic keeps an interval's two bounds in one vector), four
+// floats or ints (SSE2 on x86-64, NEON on ARM, scalar code elsewhere) ----
+namespace baseline_lanes {
 
 /// Double lanes.
 using Doubles = F64x2;
@@ -130,26 +137,21 @@ using Masks = I64x2;
   return as_doubles(as_bits(v) & Masks{0x7fffffffffffffffll, 0x7fffffffffffffffll});
 }
 
-}  // namespace d2
-
-// ---- four float or int lanes: the baseline (SSE2 on x86-64, NEON on ARM, scalar code elsewhere) ----
-namespace w4 {
-
-/// Lanes per vector.
-inline constexpr int kWidth = 4;
+/// Float or int lanes per vector.
+inline constexpr int kFloatLanes = 4;
 /// Float lanes.
 using Floats = F32x4;
 /// Integer lanes, and the masks of comparisons.
 using Ints = I32x4;
 
-/// kWidth values from p (any alignment).
+/// kFloatLanes values from p (any alignment).
 [[gnu::always_inline]] inline Floats load(const float* p) {
   Floats v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
 
-/// kWidth values from p (any alignment).
+/// kFloatLanes values from p (any alignment).
 [[gnu::always_inline]] inline Ints load(const std::int32_t* p) {
   Ints v;
   std::memcpy(&v, p, sizeof v);
@@ -165,37 +167,42 @@ using Ints = I32x4;
 #endif
 }
 
-/// `bits` without the bits at and above `count` (count >= 0; kWidth or more keeps them all).
+/// `bits` without the bits at and above `count` (count >= 0; kFloatLanes or more keeps them all).
 [[gnu::always_inline]] inline unsigned bits_below(unsigned bits, int count) {
-  return bits & ((1u << (count < kWidth ? count : kWidth)) - 1u);
+  return bits & ((1u << (count < kFloatLanes ? count : kFloatLanes)) - 1u);
 }
 
-/// out[k] = lanes[k] + offset for the kWidth bytes at `lanes`.
+/// out[k] = lanes[k] + offset for the kFloatLanes bytes at `lanes`.
 [[gnu::always_inline]] inline void widen_add(const std::uint8_t* lanes, std::int32_t offset, std::int32_t* out) {
-  for (int k = 0; k < kWidth; ++k) out[k] = lanes[k] + offset;
+  for (int k = 0; k < kFloatLanes; ++k) out[k] = lanes[k] + offset;
 }
 
-}  // namespace w4
+}  // namespace baseline_lanes
+
+/// The name the interval arithmetic (ccd/interval.hpp) gives the baseline's two double lanes.
+namespace d2 = baseline_lanes;
 
 #if defined(CLOTHCD_SIMD_X86)
-// ---- eight float or int lanes: AVX2 ----
-namespace w8 {
+// ---- AVX2's lanes: eight floats or ints, four doubles ----
+namespace avx2_lanes {
 
-/// Lanes per vector.
-inline constexpr int kWidth = 8;
+/// Float or int lanes per vector.
+inline constexpr int kFloatLanes = 8;
+/// Double lanes per vector.
+inline constexpr int kDoubleLanes = 4;
 /// Float lanes.
 using Floats = F32x8;
 /// Integer lanes, and the masks of comparisons.
 using Ints = I32x8;
 
-/// kWidth values from p (any alignment).
+/// kFloatLanes values from p (any alignment).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Floats load(const float* p) {
   Floats v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
 
-/// kWidth values from p (any alignment).
+/// kFloatLanes values from p (any alignment).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Ints load(const std::int32_t* p) {
   Ints v;
   std::memcpy(&v, p, sizeof v);
@@ -207,31 +214,24 @@ using Ints = I32x8;
   return static_cast<unsigned>(_mm256_movemask_ps(reinterpret_cast<__m256>(mask)));
 }
 
-/// `bits` without the bits at and above `count` (count >= 0; kWidth or more keeps them all).
+/// `bits` without the bits at and above `count` (count >= 0; kFloatLanes or more keeps them all).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline unsigned bits_below(unsigned bits, int count) {
   return _bzhi_u32(bits, static_cast<unsigned>(count));
 }
 
-/// out[k] = lanes[k] + offset for the kWidth bytes at `lanes` (one store).
+/// out[k] = lanes[k] + offset for the kFloatLanes bytes at `lanes` (one store).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void widen_add(const std::uint8_t* lanes, std::int32_t offset,
                                                              std::int32_t* out) {
   const __m256i wide = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(lanes)));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_add_epi32(wide, _mm256_set1_epi32(offset)));
 }
 
-}  // namespace w8
-
-// ---- four double lanes: AVX2 ----
-namespace d4 {
-
-/// Lanes per vector.
-inline constexpr int kWidth = 4;
 /// Double lanes.
 using Doubles = F64x4;
 /// 64-bit integer lanes, and the masks of comparisons.
 using Masks = I64x4;
 
-/// kWidth values from p (any alignment).
+/// kDoubleLanes values from p (any alignment).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline Doubles load(const double* p) { return _mm256_loadu_pd(p); }
 
 /// p[0], p[1], p[2] and 0 (reads three doubles only).
@@ -239,7 +239,7 @@ using Masks = I64x4;
   return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0));
 }
 
-/// v to p[0 .. kWidth) (any alignment).
+/// v to p[0 .. kDoubleLanes) (any alignment).
 [[gnu::always_inline]] CLOTHCD_SIMD_AVX2 inline void store(double* p, Doubles v) { _mm256_storeu_pd(p, v); }
 
 /// The first three lanes of v to p[0], p[1], p[2] (writes three doubles only).
@@ -288,8 +288,125 @@ using Masks = I64x4;
   return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(mask)));
 }
 
-}  // namespace d4
+}  // namespace avx2_lanes
 
 #endif
+
+// ---- lanes as plain arrays: kernels written lane by lane, each loop vectorized by the compiler at the level it is
+// compiled for (the same IEEE operations in the same order at every level) ----
+
+/// N doubles, one per lane, with the element-wise operations of the kernels written lane by lane.
+template <int N>
+struct LaneArray {
+  double v[N];
+  /// Lane l.
+  [[gnu::always_inline]] double& operator[](int l) { return v[l]; }
+  /// Lane l.
+  [[gnu::always_inline]] double operator[](int l) const { return v[l]; }
+};
+
+/// Lane by lane a + b.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> operator+(const LaneArray<N>& a, const LaneArray<N>& b) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = a.v[l] + b.v[l];
+  return r;
+}
+/// Lane by lane a - b.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> operator-(const LaneArray<N>& a, const LaneArray<N>& b) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = a.v[l] - b.v[l];
+  return r;
+}
+/// Lane by lane a b.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> operator*(const LaneArray<N>& a, const LaneArray<N>& b) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = a.v[l] * b.v[l];
+  return r;
+}
+/// Every lane of a times s (s on the left of each product).
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> operator*(double s, const LaneArray<N>& a) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = s * a.v[l];
+  return r;
+}
+/// Every lane of a divided by s.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> operator/(const LaneArray<N>& a, double s) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = a.v[l] / s;
+  return r;
+}
+/// Lane by lane std::min(a, b) (b < a ? b : a).
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> lane_min(const LaneArray<N>& a, const LaneArray<N>& b) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = b.v[l] < a.v[l] ? b.v[l] : a.v[l];
+  return r;
+}
+/// Lane by lane std::max(a, b) (a < b ? b : a).
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> lane_max(const LaneArray<N>& a, const LaneArray<N>& b) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = a.v[l] < b.v[l] ? b.v[l] : a.v[l];
+  return r;
+}
+/// The square root of every lane.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> lane_sqrt(const LaneArray<N>& a) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = std::sqrt(a.v[l]);
+  return r;
+}
+
+/// A 3-vector per lane: c[axis] holds the axis' coordinate of every lane.
+template <int N>
+struct LaneVector3 {
+  LaneArray<N> c[3];
+};
+
+/// Lane by lane a + b.
+template <int N>
+[[gnu::always_inline]] inline LaneVector3<N> operator+(const LaneVector3<N>& a, const LaneVector3<N>& b) {
+  return {{a.c[0] + b.c[0], a.c[1] + b.c[1], a.c[2] + b.c[2]}};
+}
+/// Lane by lane a - b.
+template <int N>
+[[gnu::always_inline]] inline LaneVector3<N> operator-(const LaneVector3<N>& a, const LaneVector3<N>& b) {
+  return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}};
+}
+/// Every lane's vector times s.
+template <int N>
+[[gnu::always_inline]] inline LaneVector3<N> operator*(double s, const LaneVector3<N>& a) {
+  return {{s * a.c[0], s * a.c[1], s * a.c[2]}};
+}
+/// Every lane's vector divided by s.
+template <int N>
+[[gnu::always_inline]] inline LaneVector3<N> operator/(const LaneVector3<N>& a, double s) {
+  return {{a.c[0] / s, a.c[1] / s, a.c[2] / s}};
+}
+/// Lane by lane a . b in Eigen's order, (a0 b0 + a1 b1) + a2 b2.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> dot(const LaneVector3<N>& a, const LaneVector3<N>& b) {
+  return (a.c[0] * b.c[0] + a.c[1] * b.c[1]) + a.c[2] * b.c[2];
+}
+/// Lane by lane a . s for one direction s[0..3), (s0 a0 + s1 a1) + s2 a2 (the products commute exactly).
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> dot(const LaneVector3<N>& a, const double* s) {
+  return (s[0] * a.c[0] + s[1] * a.c[1]) + s[2] * a.c[2];
+}
+/// Lane by lane a x b.
+template <int N>
+[[gnu::always_inline]] inline LaneVector3<N> cross(const LaneVector3<N>& a, const LaneVector3<N>& b) {
+  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2], a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
+}
+/// Lane by lane |a| (the square root of dot(a, a)).
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> norm(const LaneVector3<N>& a) {
+  return lane_sqrt(dot(a, a));
+}
 
 }  // namespace clothcd::simd

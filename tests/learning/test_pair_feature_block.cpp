@@ -2,12 +2,14 @@
 // and degenerate ones, on every instruction set this CPU runs.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
 
+#include "clothcd/ccd/pair_block.hpp"
 #include "clothcd/learning/pair_features.hpp"
 #include "clothcd/simd_level.hpp"
 #include "learning/pair_feature_block.hpp"
@@ -84,7 +86,51 @@ void check_against_per_pair(const std::vector<ccd::CcdQuery>& pairs, std::size_t
   }
 }
 
+// The features of each kind's pairs read straight from a ccd::PairBlock (as the network culler reads them) against
+// the per-pair features, at every level.
+void check_block_against_per_pair(const std::vector<ccd::CcdQuery>& pairs, std::size_t features) {
+  for (const PairKind kind : {PairKind::VertexFace, PairKind::EdgeEdge}) {
+    std::vector<const ccd::CcdQuery*> of_kind;
+    for (const ccd::CcdQuery& pair : pairs) {
+      if (pair.kind == kind) of_kind.push_back(&pair);
+    }
+    if (of_kind.empty()) continue;
+    ccd::PairBlock block(static_cast<int>(of_kind.size()));
+    block.reset(kind);
+    for (const ccd::CcdQuery* pair : of_kind) {
+      std::array<const double*, 4> start{}, end{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        start[k] = pair->start[k].data();
+        end[k] = pair->end[k].data();
+      }
+      block.push({}, 0, start, end);
+    }
+    for (const SimdLevel level : cpu_simd_levels()) {
+      PairFeatureBatch batch;
+      batch.resize(of_kind.size(), features);
+      detail::compute_feature_blocks(block, features, level, batch);
+      std::vector<double> row(features);
+      for (std::size_t i = 0; i < of_kind.size(); ++i) {
+        compute_pair_features(*of_kind[i], FeatureSettings{features}, row.data());
+        for (std::size_t f = 0; f < features; ++f) {
+          INFO("block pair " << i << " feature " << f << " level " << simd_level_name(level));
+          CHECK(same_bits(batch.column(f)[i], row[f]));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
+
+TEST_CASE("batch features from a pair block equal the per-pair features bit for bit", "[learning][features]") {
+  std::mt19937_64 rng(47);
+  std::vector<ccd::CcdQuery> pairs;
+  for (int i = 0; i < 1001; ++i) pairs.push_back(test::random_pair(rng));  // groups of both kinds, the last short
+  check_block_against_per_pair(pairs, 15);
+  check_block_against_per_pair(pairs, kMaxPairFeatures);
+  check_block_against_per_pair(degenerate_pairs(), 15);
+}
 
 TEST_CASE("batch features equal the per-pair features bit for bit", "[learning][features]") {
   std::mt19937_64 rng(41);
