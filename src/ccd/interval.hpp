@@ -27,33 +27,34 @@ struct Interval {
 // one, which can only change the sign of a zero bound).
 namespace bounds {
 
-using simd::d2::Doubles;
-using simd::d2::Masks;
+namespace lanes = simd::baseline_lanes;
+using lanes::Doubles;
+using lanes::Masks;
 
 [[gnu::always_inline]] inline Doubles of(const Interval& a) { return Doubles{a.lo, a.hi}; }
 [[gnu::always_inline]] inline Interval to_interval(Doubles v) { return {v[0], v[1]}; }
 
 /// {lo - error_lo, hi + error_hi}: the rounded bounds v moved outwards by error >= 0.
 [[gnu::always_inline]] inline Doubles outward(Doubles v, Doubles error) {
-  return v + simd::d2::as_doubles(simd::d2::as_bits(error) ^ Masks{INT64_MIN, 0});
+  return v + lanes::as_doubles(lanes::as_bits(error) ^ Masks{INT64_MIN, 0});
 }
 
 /// Lanes that are non-zero and below 2^-511 in magnitude (a product with them may underflow).
 [[gnu::always_inline]] inline Masks tiny_nonzero(Doubles v) {
-  const Doubles magnitude = simd::d2::abs(v);
-  return simd::d2::less(magnitude, simd::d2::splat(0x1p-511)) & simd::d2::less(simd::d2::splat(0.0), magnitude);
+  const Doubles magnitude = lanes::abs(v);
+  return lanes::less(magnitude, lanes::splat(0x1p-511)) & lanes::less(lanes::splat(0.0), magnitude);
 }
 
 /// A sum's or difference's rounded bounds moved out by 2^-51 of their magnitudes: {lo - |lo| 2^-51, hi + |hi| 2^-51}.
 [[gnu::always_inline]] inline Interval widened_sum(Doubles v) {
-  return to_interval(outward(v, simd::d2::abs(v) * simd::d2::splat(0x1p-51)));
+  return to_interval(outward(v, lanes::abs(v) * lanes::splat(0x1p-51)));
 }
 
 /// A product's rounded bounds moved out by 2^-51 of their magnitudes, plus 2^-1022 when `tiny` has a lane set:
 /// {lo - (|lo| 2^-51 + u), hi + (|hi| 2^-51 + u)}.
 [[gnu::always_inline]] inline Interval widened_product(Doubles v, Masks tiny) {
-  const double underflow = simd::d2::any(tiny) ? 0x1p-1022 : 0.0;
-  return to_interval(outward(v, simd::d2::abs(v) * simd::d2::splat(0x1p-51) + simd::d2::splat(underflow)));
+  const double underflow = lanes::any(tiny) ? 0x1p-1022 : 0.0;
+  return to_interval(outward(v, lanes::abs(v) * lanes::splat(0x1p-51) + lanes::splat(underflow)));
 }
 
 }  // namespace bounds
@@ -70,12 +71,12 @@ inline Interval hull(const Interval& a, const Interval& b) {
 }
 /// The rounded {a.lo - b.hi, a.hi - b.lo}, widened.
 [[gnu::always_inline]] inline Interval operator-(const Interval& a, const Interval& b) {
-  return bounds::widened_sum(bounds::of(a) - simd::d2::swap(bounds::of(b)));
+  return bounds::widened_sum(bounds::of(a) - bounds::lanes::swap(bounds::of(b)));
 }
 
 /// The smallest and largest of the four rounded endpoint products, widened (with 2^-1022 when an endpoint is tiny).
 [[gnu::always_inline]] inline Interval operator*(const Interval& a, const Interval& b) {
-  using namespace simd::d2;
+  using namespace simd::baseline_lanes;
   const Doubles bb = bounds::of(b);
   const Doubles from_lo = splat(a.lo) * bb, from_hi = splat(a.hi) * bb;
   const Doubles low = min(from_lo, from_hi), high = max(from_lo, from_hi);
@@ -87,7 +88,7 @@ inline Interval hull(const Interval& a, const Interval& b) {
 /// with two products, and only x's endpoints can make them underflow.
 [[gnu::always_inline]] inline Interval scaled(const Interval& x, double c) {
   const bounds::Doubles v = bounds::of(x);
-  return bounds::widened_product(v * simd::d2::splat(c), bounds::tiny_nonzero(v));
+  return bounds::widened_product(v * bounds::lanes::splat(c), bounds::tiny_nonzero(v));
 }
 
 /// Sign certain under the enclosure: 1 or -1, else 0 (zero inside, or NaN bounds).

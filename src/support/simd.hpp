@@ -179,9 +179,6 @@ using Ints = I32x4;
 
 }  // namespace baseline_lanes
 
-/// The name the interval arithmetic (ccd/interval.hpp) gives the baseline's two double lanes.
-namespace d2 = baseline_lanes;
-
 #if defined(CLOTHCD_SIMD_X86)
 // ---- AVX2's lanes: eight floats or ints, four doubles ----
 namespace avx2_lanes {
