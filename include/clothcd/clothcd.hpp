@@ -19,6 +19,7 @@
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/detection/detection_errors.hpp"
+#include "clothcd/detection/earliest_impact.hpp"
 #include "clothcd/detection/pair_culler.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/geometry/convex_hull.hpp"

@@ -41,7 +41,39 @@ void vertex_box(const Vertices& start, const Vertices& end, double thickness, in
   }
 }
 
+// The box of vertex v over the first `window` of the step (a power of two in (0, 1]) into `box`, as vertex_box makes
+// it for the positions at 0 and `window`. The position at `window`, start + window (end - start), is rounded (twice,
+// the product by a power of two being exact): it is moved outwards by 2^-50 of the larger end's magnitude (more than
+// those two roundings) and the smallest subnormal. Rounding is monotone, so a longer window's box holds a shorter's.
+void window_vertex_box(const Vertices& start, const Vertices& end, double window, double thickness, int v,
+                       FlatBox& box) {
+  const double* p = start.data() + 3 * static_cast<std::ptrdiff_t>(v);
+  const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
+  vertex_box(start, start, thickness, v, box);
+  for (int k = 0; k < 3; ++k) {
+    if (p[k] == q[k]) continue;
+    const double at_window = p[k] + window * (q[k] - p[k]);
+    const double slack = std::fmax(std::fabs(p[k]), std::fabs(q[k])) * 0x1p-50 + 0x1p-1074;
+    FlatBox moved;
+    const double low = at_window - slack, high = at_window + slack;
+    const double half = 0.5 * thickness;
+    moved.min[k] = half == 0.0 ? low : (low - half) - (std::fabs(low - half) * 0x1p-52 + 0x1p-1074);
+    moved.max[k] = half == 0.0 ? high : (high + half) + (std::fabs(high + half) * 0x1p-52 + 0x1p-1074);
+    box.min[k] = std::fmin(box.min[k], moved.min[k]);
+    box.max[k] = std::fmax(box.max[k], moved.max[k]);
+  }
+}
+
 }  // namespace
+
+void compute_window_vertex_boxes(const Vertices& start, const Vertices& end, double window, double thickness,
+                                 SweptBoxes& boxes) {
+  const int vertex_count = static_cast<int>(start.rows());
+  boxes.vertices.resize(vertex_count);
+  boxes.edges.clear();
+  boxes.faces.clear();
+  for (int v = 0; v < vertex_count; ++v) window_vertex_box(start, end, window, thickness, v, boxes.vertices[v]);
+}
 
 void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes) {
   const int vertex_count = static_cast<int>(start.rows());

@@ -278,6 +278,7 @@ struct Search {
   const Motion& motion;
   int deep_pieces_left = 0;  // pieces below kMaxDepth this query may still examine
   double toi = 1.0;
+  double until = 1.0;  // pieces starting after this time are not examined (continuous_collision_until)
 };
 
 // Three times D's Bernstein coefficients on a piece (bernstein_of_d's middle coefficients carry the binomial factor 3,
@@ -356,6 +357,7 @@ void split_piece(const Motion& motion, double mid, const PointSet& e0, const Poi
 // the coefficients `bernstein` (computed from the positions on the whole step, by halving the parent's below it).
 PieceOutcome search_exact_contact(Search& search, double t0, double t1, const PointSet& e0, const PointSet& e1,
                                   const PointSet& boxes, int depth, const TripledBernstein& bernstein) {
+  if (t0 > search.until) return PieceOutcome::Clear;
   const double mid = 0.5 * (t0 + t1);
   if (depth > kMaxDepth && common_strict_sign(bernstein) == 0 && --search.deep_pieces_left < 0)
     return PieceOutcome::Undecided;
@@ -488,8 +490,10 @@ CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
 }
 
 // Thickness 0. Queries the intervals leave undecided are reported as conservative hits unless decide_exactly; those
-// too large for the fast path always go to the exact tiers.
-CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, bool nonpenetration_checked) {
+// too large for the fast path always go to the exact tiers. A query that certainly has no contact until `until` is
+// separated (see continuous_collision_until).
+CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, bool nonpenetration_checked,
+                                    double until) {
   if (!nonpenetration_checked && nonpenetration_filter_culls(query)) return CcdResult{};
   if (fits_fast_path(query)) {
     double undecided_from = 0.0;  // lower bound of the earliest contact when undecided
@@ -508,11 +512,12 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
       const int at = touch_at_start ? 0 : 1;
       const std::optional<bool> touches =
           has_zero_point(at == 0 ? start : end) ? std::optional<bool>(true) : detail::touches_at_step_end(query, at);
+      if (at == 1 && until < 1.0) return CcdResult{};  // the touch at the end is the only contact
       if (touches && *touches) return make_hit(query, at, CcdState::Hit);
       if (touches && at == 1) return CcdResult{};
     } else if (!touch_at_end) {
       const Motion motion = motion_of(start, end);
-      Search search{motion, decide_exactly ? kDeepPieceBudget : 0, 1.0};
+      Search search{motion, decide_exactly ? kDeepPieceBudget : 0, 1.0, until};
       const PointSet boxes = piece_boxes(start, end);
       const PieceOutcome outcome =
           boxes_exclude_origin(boxes, 0.0)
@@ -521,6 +526,9 @@ CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, 
       if (outcome == PieceOutcome::Clear) return CcdResult{};
       if (outcome == PieceOutcome::Hit) return make_hit(query, search.toi, CcdState::Hit);
       undecided_from = search.toi;
+      // No contact before undecided_from, so the exact tiers' time of impact (at most kToiTolerance below the contact)
+      // would come after `until`.
+      if (undecided_from - kToiTolerance > until) return CcdResult{};
     }
     if (const std::optional<detail::PinnedAnswer> pinned = detail::pinned_segment_contact(query))
       return pinned->hit ? make_hit(query, pinned->toi, CcdState::Hit) : CcdResult{};
@@ -542,8 +550,8 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings) {
     throw std::invalid_argument("CCD thickness must be finite and >= 0, got " + std::to_string(settings.thickness));
 }
 
-CcdResult continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings,
-                                                    CcdFilter applied) {
+CcdResult continuous_collision_until(const CcdQuery& query, const CcdSettings& settings, CcdFilter applied,
+                                     double until) {
   if (!all_finite(query) || !(settings.thickness >= 0.0) || !std::isfinite(settings.thickness)) {
     CcdResult result;
     result.hit = true;
@@ -553,12 +561,17 @@ CcdResult continuous_collision_after_filter(const CcdQuery& query, const CcdSett
   }
   const bool nonpenetration_checked = applied == CcdFilter::NonPenetration || applied == CcdFilter::Combined;
   const bool projection_checked = applied == CcdFilter::Projection || applied == CcdFilter::Combined;
-  if (settings.thickness == 0.0) return contact_without_thickness(query, settings.decide_exactly, nonpenetration_checked);
+  if (settings.thickness == 0.0)
+    return contact_without_thickness(query, settings.decide_exactly, nonpenetration_checked, until);
   if (!projection_checked && projection_filter_culls(query, settings)) return CcdResult{};
   if (fits_fast_path(query)) return detail::thick_contact(query, settings.thickness);
   // Coordinates this large could overflow the double distances: report a conservative hit. (Proving the touch on the
   // exact path only changed the state label, and its rational root isolation can take minutes on such magnitudes.)
   return make_hit(query, 0.0, CcdState::ConservativeHit);
+}
+
+CcdResult continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings, CcdFilter applied) {
+  return continuous_collision_until(query, settings, applied, 1.0);
 }
 
 CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings) {

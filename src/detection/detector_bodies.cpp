@@ -90,6 +90,23 @@ int DetectorBodies::refit(const Vertices& start, const Vertices& end, double thi
   return rebuilds;
 }
 
+int DetectorBodies::refit_window(const Vertices& start, const Vertices& end, double window, double thickness) {
+  int rebuilds = 0;
+  broadphase::compute_window_vertex_boxes(start, end, window, thickness, cloth_.boxes);
+  if (cloth_.bvh.update(cloth_.topology, cloth_.boxes, start, end) == broadphase::BvhUpdate::Rebuilt) ++rebuilds;
+  for (Body& o : obstacles_) {
+    if (!o.stale) continue;
+    if (o.moving) {
+      broadphase::compute_window_vertex_boxes(o.start, o.end, window, thickness, o.boxes);
+    } else {
+      broadphase::compute_swept_vertex_boxes(o.start, o.end, thickness, o.boxes);
+    }
+    if (o.bvh.update(o.topology, o.boxes, o.start, o.end) == broadphase::BvhUpdate::Rebuilt) ++rebuilds;
+    o.stale = o.moving;
+  }
+  return rebuilds;
+}
+
 std::vector<BodyFrames> DetectorBodies::frames(const Vertices& start, const Vertices& end) const {
   std::vector<BodyFrames> frames(obstacles_.size() + 1);
   frames[0] = {&cloth_.topology, &start, &end};

@@ -1,6 +1,8 @@
 // The narrow phase as a candidate sink (see pair_pipeline.hpp).
 #include "pair_pipeline.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "clothcd/detection/detection_errors.hpp"
@@ -42,12 +44,15 @@ void PairPipeline::begin(const std::vector<BodyFrames>& bodies, const PairKeys& 
   settings_ = &settings;
   discard();
   found_.store(kept, std::memory_order_relaxed);
+  earliest_toi_.store(settings.earliest_bound, std::memory_order_relaxed);
 }
 
 void PairPipeline::discard() {
   for (Worker& w : workers_) {
     w.block.reset(PairKind::VertexFace);
     std::vector<std::vector<KeyedCollision>>().swap(w.collisions);
+    w.earliest = KeyedCollision{};
+    w.earliest.collision.toi = std::numeric_limits<double>::infinity();
     w.counts = PipelineCounts{};
   }
 }
@@ -57,6 +62,26 @@ void PairPipeline::check_stop() const {
   if (s.cancel != nullptr && *s.cancel && (*s.cancel)()) throw DetectionCancelled();
   const long found = found_.load(std::memory_order_relaxed);
   if (s.exact && found > s.max_collisions) throw CollisionBudgetExceeded(found, s.max_collisions);
+}
+
+namespace {
+
+// The collision of survivor i of `block`, whose exact test gave `r`.
+void fill_collision(const ccd::PairBlock& block, int i, const ccd::CcdResult& r, Collision& c) {
+  c.kind = block.kind();
+  c.vertices = block.vertices(i);
+  c.toi = r.toi;
+  c.parameters = r.parameters;
+  c.normal = r.normal;
+  c.conservative = r.state == ccd::CcdState::ConservativeHit;
+}
+
+}  // namespace
+
+bool earlier_impact(const KeyedCollision& a, const KeyedCollision& b) {
+  if (a.collision.toi != b.collision.toi) return a.collision.toi < b.collision.toi;
+  if (a.collision.kind != b.collision.kind) return a.collision.kind == PairKind::VertexFace;
+  return a.key < b.key;
 }
 
 KeyedCollision& PairPipeline::add_collision(Worker& w) {
@@ -131,7 +156,9 @@ void PairPipeline::run_block(Worker& w) const {
   }
   w.counts.culled += n - survivors;
   w.counts.culling_ms += milliseconds_since(t);
-  if (s.exact) {
+  if (s.exact && s.earliest) {
+    find_earliest(w, survivors, filtered, applied);
+  } else if (s.exact) {
     t = StageClock::now();
     long hits = 0;
     for (int i = 0; i < survivors; ++i) {
@@ -143,18 +170,43 @@ void PairPipeline::run_block(Worker& w) const {
       KeyedCollision& h = add_collision(w);
       ++hits;
       h.key = w.keys[block.tag(i)];
-      h.collision.kind = block.kind();
-      h.collision.vertices = block.vertices(i);
-      h.collision.toi = r.toi;
-      h.collision.parameters = r.parameters;
-      h.collision.normal = r.normal;
-      h.collision.conservative = r.state == ccd::CcdState::ConservativeHit;
+      fill_collision(block, i, r, h.collision);
     }
     w.counts.exact_ms += milliseconds_since(t);
     if (hits > 0) found_.fetch_add(hits, std::memory_order_relaxed);
   }
   if (s.observer != nullptr) show_block(w, survivors);
   block.reset(block.kind());
+}
+
+void PairPipeline::find_earliest(Worker& w, int survivors, int filtered, ccd::CcdFilter applied) const {
+  const PipelineSettings& s = *settings_;
+  const ccd::PairBlock& block = w.block;
+  const auto t = StageClock::now();
+  const std::uint64_t kind_offset = block.kind() == PairKind::EdgeEdge ? keys_->vertex_face_key_count() : 0;
+  for (int i = 0; i < survivors; ++i) {
+    const double until = std::min(s.window, earliest_toi_.load(std::memory_order_relaxed));
+    const ccd::CcdResult r = ccd::continuous_collision_until(block.query(i), s.ccd,
+                                                             i < filtered ? applied : ccd::CcdFilter::None, until);
+    double best = earliest_toi_.load(std::memory_order_relaxed);
+    if (!r.hit || r.toi > best) continue;
+    KeyedCollision hit;
+    hit.key = kind_offset + w.keys[block.tag(i)];
+    fill_collision(block, i, r, hit.collision);
+    if (earlier_impact(hit, w.earliest)) w.earliest = hit;
+    while (r.toi < best && !earliest_toi_.compare_exchange_weak(best, r.toi, std::memory_order_relaxed)) {
+    }
+  }
+  w.counts.exact_ms += milliseconds_since(t);
+}
+
+KeyedCollision PairPipeline::earliest() const {
+  KeyedCollision best;
+  best.collision.toi = std::numeric_limits<double>::infinity();
+  for (const Worker& w : workers_) {
+    if (earlier_impact(w.earliest, best)) best = w.earliest;
+  }
+  return best;
 }
 
 void PairPipeline::show_block(Worker& w, int survivors) const {

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -62,6 +63,10 @@ struct KeyedCollision {
   Collision collision;    ///< The collision.
 };
 
+/// True when `a` comes before `b` in the earliest-impact order: time of impact, then kind (vertex-face first), then key
+/// (the order of detect()'s list).
+[[nodiscard]] bool earlier_impact(const KeyedCollision& a, const KeyedCollision& b);
+
 /// How the pipeline treats the pairs of one search.
 struct PipelineSettings {
   ccd::CcdFilter filter = ccd::CcdFilter::Combined;  ///< Culling without a culler.
@@ -73,6 +78,14 @@ struct PipelineSettings {
   long max_collisions = 0;                  ///< With `exact`: the budget (CollisionBudgetExceeded beyond it).
   /// When set and not empty: called before each block; true throws DetectionCancelled.
   const std::function<bool()>* cancel = nullptr;
+  /// With `exact`: search the earliest contact instead of every collision. Each survivor is tested only up to the
+  /// earliest time of impact found so far by any thread, or `window` when that is earlier
+  /// (ccd::continuous_collision_until), no collisions are kept (and none count in the budget), and each thread keeps
+  /// its earliest hit (PairPipeline::earliest).
+  bool earliest = false;
+  double window = 1.0;  ///< With `earliest`: the part of the step the search needs.
+  /// With `earliest`: a time of impact found before this search (an earlier window's); pairs are tested up to it.
+  double earliest_bound = std::numeric_limits<double>::infinity();
 };
 
 /// Counts and thread times of the pipeline (times summed over threads).
@@ -124,13 +137,19 @@ class PairPipeline final : public broadphase::CandidateSink {
     }
   }
 
+  /// With PipelineSettings::earliest: the search's earliest hit, ties broken by kind (vertex-face first) and key; toi
+  /// beyond every hit (infinity) when the search found none at or before its bound.
+  [[nodiscard]] KeyedCollision earliest() const;
+
   /// Frees what a search left (its collisions and counts), e.g. after it threw.
   void discard();
 
  private:
   // One thread's block, scratch, collisions and counts. The block's tags are the pairs' indices into `keys`.
   struct Worker {
-    explicit Worker(int block_pairs) : block(block_pairs), keys(static_cast<std::size_t>(block.capacity())) {}
+    explicit Worker(int block_pairs) : block(block_pairs), keys(static_cast<std::size_t>(block.capacity())) {
+      earliest.collision.toi = std::numeric_limits<double>::infinity();
+    }
     ccd::PairBlock block;
     std::vector<std::uint64_t> keys;                      // sort key of each pair pushed, by tag
     std::unique_ptr<ccd::PairBlock> observed;             // with an observer: the block before culling
@@ -138,6 +157,7 @@ class PairPipeline final : public broadphase::CandidateSink {
     std::vector<std::uint8_t> culled;                     // cull_pair_block's scratch
     CullerScratch culler;                                 // network mode: cull_with_culler's scratch
     std::vector<std::vector<KeyedCollision>> collisions;  // found, in chunks of kChunkCollisions
+    KeyedCollision earliest;  // PipelineSettings::earliest: this thread's earliest hit (toi infinity: none yet)
     PipelineCounts counts;
   };
 
@@ -147,6 +167,8 @@ class PairPipeline final : public broadphase::CandidateSink {
   void check_stop() const;
 
   void run_block(Worker& w) const;
+  // The exact test of the block's survivors [0, survivors) for PipelineSettings::earliest.
+  void find_earliest(Worker& w, int survivors, int filtered, ccd::CcdFilter applied) const;
   void show_block(Worker& w, int survivors) const;
 
   const std::vector<BodyFrames>* bodies_ = nullptr;
@@ -154,6 +176,7 @@ class PairPipeline final : public broadphase::CandidateSink {
   const PipelineSettings* settings_ = nullptr;
   tbb::enumerable_thread_specific<Worker> workers_;
   mutable std::atomic<long> found_{0};  // collisions found by all threads (the kept ones included)
+  mutable std::atomic<double> earliest_toi_{0.0};  // PipelineSettings::earliest: the earliest toi found so far
 };
 
 }  // namespace clothcd::detail

@@ -1,7 +1,7 @@
 // Exact answers on the shared real simulation steps (when that data is present): with the default settings every
 // reported collision is a proven one (the exact rational reference confirms it), its time of impact is never later
 // than the pair's exact earliest contact and at most 1e-6 of the step earlier, and the step's earliest time of impact
-// is the exact one (reference values by rational root isolation).
+// is the exact one (reference values by rational root isolation), as is the earliest-impact search's answer.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
@@ -78,5 +78,15 @@ TEST_CASE("shared steps: every reported collision is proven, with a tight time o
     INFO("exact earliest contact in [" << std::setprecision(17) << earliest_lo << ", " << earliest_hi << "]");
     CHECK(scene.earliest >= earliest_lo - scene.digits);
     CHECK(scene.earliest <= earliest_hi + scene.digits);
+
+    // The earliest-impact search gives the same bounds, and the same answer on one thread.
+    const clothcd::EarliestImpact earliest = detector.earliest_impact(frames.start.vertices, frames.end);
+    CHECK(earliest.hit);
+    CHECK(earliest.toi <= earliest_hi);
+    CHECK(earliest.toi >= earliest_lo - 1e-6);
+    clothcd::DetectorSettings one_thread;
+    one_thread.parallel = false;
+    clothcd::CollisionDetector serial(frames.start.faces, static_cast<int>(frames.start.vertex_count()), one_thread);
+    CHECK(serial.earliest_impact(frames.start.vertices, frames.end).toi == earliest.toi);
   }
 }

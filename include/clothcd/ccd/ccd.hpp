@@ -99,6 +99,13 @@ void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 [[nodiscard]] CcdResult continuous_collision_after_filter(const CcdQuery& query, const CcdSettings& settings,
                                                           CcdFilter applied);
 
+/// continuous_collision_after_filter for a search of the earliest contact: the part of the step after `until` (in
+/// [0, 1]) is not examined. When the query's result from continuous_collision_after_filter has toi <= until, this is
+/// that same result; otherwise it is that result or Separated (the query has no contact at or before `until`). With a
+/// thickness the whole step is examined, as continuous_collision_after_filter does.
+[[nodiscard]] CcdResult continuous_collision_until(const CcdQuery& query, const CcdSettings& settings,
+                                                   CcdFilter applied, double until);
+
 
 /// Slow exact reference (GMP rationals, thickness 0): true when the primitives touch or cross at some t in [0, 1].
 /// Throws std::invalid_argument on non-finite coordinates.
