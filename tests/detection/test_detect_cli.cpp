@@ -128,3 +128,47 @@ TEST_CASE("clothcd detect refuses OBJ frames whose faces differ and output it ca
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("clothcd detect --earliest reports the step's earliest time of impact", "[detection][cli][earliest]") {
+  const fs::path dir = fs::temp_directory_path() / "clothcd_detect_earliest_cli_test";
+  fs::create_directories(dir);
+  // A still plate (y = 0) and a cloth 0.1 above it falling by `drop`: through the plate at t = 0.1 / drop when
+  // drop > 0.1, no contact otherwise.
+  clothcd::TriangleMesh plate = clothcd::make_grid(3, 3, 2.0, 2.0);
+  clothcd::TriangleMesh cloth = clothcd::make_grid(4, 4, 0.5, 0.5);
+  clothcd::TriangleMesh t0;
+  t0.vertices.resize(plate.vertex_count() + cloth.vertex_count(), 3);
+  t0.vertices << plate.vertices, cloth.vertices;
+  t0.vertices.bottomRows(cloth.vertex_count()).col(1).array() += 0.1;
+  t0.faces.resize(plate.face_count() + cloth.face_count(), 3);
+  t0.faces << plate.faces, (cloth.faces.array() + static_cast<int>(plate.vertex_count())).matrix();
+  clothcd::save_mesh(t0, dir / "t0.obj");
+  const std::string frames = (dir / "t0.obj").string() + " " + (dir / "t1.obj").string();
+  for (const double drop : {0.4, 0.05}) {
+    INFO("drop " << drop);
+    clothcd::TriangleMesh t1 = t0;
+    t1.vertices.bottomRows(cloth.vertex_count()).col(1).array() -= drop;
+    clothcd::save_mesh(t1, dir / "t1.obj");
+    REQUIRE(run("detect " + frames + " --earliest --json", dir / "out.json") == 0);
+    const nlohmann::json report = nlohmann::json::parse(read(dir / "out.json"));
+    const nlohmann::json& earliest = report.at("earliest");
+    const bool contact = drop > 0.1;
+    CHECK(earliest.at("hit") == contact);
+    CHECK(report.at("counts").count("vertex_face") == 0);
+    const double toi = earliest.at("toi");
+    if (contact) {
+      CHECK(toi <= 0.25);
+      CHECK(toi >= 0.25 - 1e-6);
+      CHECK(earliest.at("windows") == 2);
+      CHECK(earliest.at("pair").at("toi") == toi);
+    } else {
+      CHECK(toi == 1.0);
+      CHECK(earliest.at("windows") == 3);
+      CHECK(earliest.at("pair").is_null());
+    }
+    REQUIRE(run("detect " + frames + " --earliest", dir / "log.txt") == 0);
+    CHECK(read(dir / "log.txt").find(contact ? "earliest:    toi 0.2499" : "earliest:    toi 1 (no contact") !=
+          std::string::npos);
+  }
+  fs::remove_all(dir);
+}

@@ -4,6 +4,8 @@
 // serialised, one collision at a time, never held whole in memory. A step with more collisions than --max-collisions
 // ends with the detector's one-line error and exit code 1.
 // `--filter network` runs the detector's network culling (the pair network in front of the combined filters).
+// `--earliest` answers the other question of a step instead: its earliest time of impact and the pair that sets it
+// (CollisionDetector::earliest_impact), the collision-free fraction of the step.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,6 +42,7 @@ struct DetectOptions {
   std::string network;
   std::string out;
   bool json = false;
+  bool earliest = false;
   long max_collisions = DetectorSettings{}.max_collisions;
 };
 
@@ -167,6 +170,58 @@ void write_detect_json(std::ostream& out, const Json& head, const TriangleMesh& 
   out << "\n}\n";
 }
 
+// Writes the JSON report `report` to stdout (with --json) and to --out.
+void write_report(const DetectOptions& o, const Json& report) {
+  if (o.json) std::cout << report.dump(2) << '\n';
+  if (o.out.empty()) return;
+  std::ofstream file(o.out);
+  if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
+  file << report.dump(2) << '\n';
+  file.close();  // flushes: a full disk shows here
+  if (!file) throw std::runtime_error(o.out + ": write failed");
+}
+
+// --earliest: the step's earliest time of impact and the pair that sets it.
+void report_earliest(const DetectOptions& o, CollisionDetector& detector, const MeshFrames& frames, double load_ms) {
+  const EarliestImpact e = detector.earliest_impact(frames.start.vertices, frames.end);
+  const DetectionStats& s = detector.stats();
+  const TriangleMesh& t0 = frames.start;
+  if (o.json || !o.out.empty()) {
+    Json report = detect_json_head(o, t0, {}, s, load_ms);
+    report["counts"].erase("vertex_face");  // no collision list: the earliest pair only
+    report["counts"].erase("edge_edge");
+    FaceNames faces(t0);
+    report["earliest"] = {{"toi", e.toi},
+                          {"hit", e.hit},
+                          {"windows", e.windows},
+                          {"pair", e.hit ? collision_json(e.pair, e.pair.kind == PairKind::VertexFace ? faces.next(e.pair)
+                                                                                                       : -1)
+                                         : Json(nullptr)}};
+    write_report(o, report);
+    if (o.json) return;
+  }
+  std::cout << "mesh:        " << t0.vertex_count() << " vertices, " << t0.face_count() << " faces (one deformable "
+            << "body with self-collision)\n"
+            << "candidates:  " << s.candidates_vertex_face << " vertex-face, " << s.candidates_edge_edge
+            << " edge-edge (" << o.bvh << ", " << e.windows << (e.windows == 1 ? " window" : " windows") << ")\n"
+            << std::setprecision(17) << "earliest:    toi " << e.toi;
+  if (e.hit) {
+    const auto& v = e.pair.vertices;
+    if (e.pair.kind == PairKind::VertexFace) {
+      std::cout << ", vertex " << v[0].vertex << " against face (" << v[1].vertex << ", " << v[2].vertex << ", "
+                << v[3].vertex << ")\n";
+    } else {
+      std::cout << ", edge (" << v[0].vertex << ", " << v[1].vertex << ") against edge (" << v[2].vertex << ", "
+                << v[3].vertex << ")\n";
+    }
+  } else {
+    std::cout << " (no contact during the step)\n";
+  }
+  std::cout << std::fixed << std::setprecision(3) << "times (ms):  load " << load_ms << ", build+refit " << s.refit_ms
+            << ", traversal " << s.traversal_ms << ", filters " << s.culling_ms << ", exact " << s.exact_ms << '\n';
+  if (!o.out.empty()) std::cout << "wrote " << o.out << '\n';
+}
+
 void run_detect(const DetectOptions& o) {
   check_network_needs_filter(o.network, o.filter);
   check_approximate_needs_zero_thickness(o.approximate, o.thickness);
@@ -185,6 +240,10 @@ void run_detect(const DetectOptions& o) {
   const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 
   CollisionDetector detector(t0.faces, static_cast<int>(t0.vertex_count()), settings);
+  if (o.earliest) {
+    report_earliest(o, detector, frames, load_ms);
+    return;
+  }
   const std::vector<Collision>& collisions = detector.detect(t0.vertices, frames.end);
   const DetectionStats& s = detector.stats();
   if (o.json || !o.out.empty()) {
@@ -238,6 +297,9 @@ void add_detect_command(CLI::App& app) {
   command->add_option("--max-collisions", o->max_collisions,
                       "Collision budget: a step with more collisions stops early with an error (exit code 1)")
       ->check(CLI::Range(1L, kLargestCollisionBudget));
+  command->add_flag("--earliest", o->earliest,
+                    "Report the step's earliest time of impact (1: no contact) and the pair that sets it, instead of "
+                    "every collision");
   command->callback([o] { run_detect(*o); });
 }
 
