@@ -28,10 +28,11 @@ from ._clothcd import (
     simplify,
 )
 from . import _clothcd
-from .collisions import EDGE_EDGE, VERTEX_FACE, Collision, Collisions
+from .collisions import EDGE_EDGE, VERTEX_FACE, Collision, Collisions, EarliestImpact
 
 __all__ = [
-    "__version__", "Collision", "CollisionBudgetExceeded", "Collisions", "CollisionDetector", "ccd", "default_model_dir", "load_mesh",
+    "__version__", "Collision", "CollisionBudgetExceeded", "Collisions", "CollisionDetector", "EarliestImpact", "ccd",
+    "default_model_dir", "load_mesh",
     "load_mesh_frames", "make_grid", "make_paper_cloth", "make_uv_sphere", "obb", "render_png", "save_mesh", "simplify",
     "simulate", "simulate_scene",
 ]
@@ -96,8 +97,20 @@ class CollisionDetector:
             np.asarray(x0, dtype=np.float64), np.asarray(x1, dtype=np.float64))
         return Collisions(kind, bodies, vertices, toi, parameters, normal, conservative.view(bool))
 
+    def earliest_impact(self, x0: npt.ArrayLike, x1: npt.ArrayLike) -> EarliestImpact:
+        """The step's earliest time of impact, from cloth positions `x0` to `x1` (taken as detect() takes them): how far
+        along the step everything can move before any pair comes into contact (or within the thickness), and the pair
+        that sets it. Searches only as much of the step as it needs, so an early contact costs far less than detect().
+        A line search takes a fraction of it, e.g. x0 + 0.8 * toi * (x1 - x0). Like detect(), it ends the step (an
+        obstacle moved by set_obstacle_positions rests at its end afterwards)."""
+        toi, hit, windows, arrays = self._detector.earliest_impact(
+            np.asarray(x0, dtype=np.float64), np.asarray(x1, dtype=np.float64))
+        kind, bodies, vertices, tois, parameters, normal, conservative = arrays
+        pairs = list(Collisions(kind, bodies, vertices, tois, parameters, normal, conservative.view(bool)))
+        return EarliestImpact(toi, hit, pairs[0] if pairs else None, windows)
+
     def stats(self) -> dict:
-        """Counts and times of the last detect() call."""
+        """Counts and times of the last detect() or earliest_impact() call."""
         return self._detector.stats()
 
 

@@ -1,6 +1,7 @@
 // CollisionDetector and the CCD on query arrays for Python. detect() and set_obstacle_positions() hand the (N, 3)
 // float64 arrays to the detector as views of their memory (no copy here; the detector makes its one copy of the
-// positions, as for a C++ caller) and detect() runs without the GIL, cancelled by Ctrl-C (KeyboardInterrupt).
+// positions, as for a C++ caller) and detect() and earliest_impact() run without the GIL, cancelled by Ctrl-C
+// (KeyboardInterrupt).
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
@@ -187,6 +188,25 @@ void bind_detection(nb::module_& m) {
               throw;
             }
             return collision_arrays(*collisions);
+          },
+          nb::arg("x0"), nb::arg("x1"))
+      .def(
+          "earliest_impact",
+          [](PyDetector& self, const PositionsArray& start, const PositionsArray& end) {
+            const PositionsRef x0 = positions_view(start, "x0");
+            const PositionsRef x1 = positions_view(end, "x1");
+            EarliestImpact earliest;
+            SignalCheck signals(self.detector);
+            try {
+              nb::gil_scoped_release release;
+              earliest = self.detector.earliest_impact(x0, x1);
+            } catch (const DetectionCancelled&) {
+              if (signals.raised()) throw nb::python_error();
+              throw;
+            }
+            const std::vector<Collision> pair = earliest.hit ? std::vector<Collision>{earliest.pair}
+                                                             : std::vector<Collision>{};
+            return std::make_tuple(earliest.toi, earliest.hit, earliest.windows, collision_arrays(pair));
           },
           nb::arg("x0"), nb::arg("x1"))
       .def("_last_detect_inputs",
