@@ -117,6 +117,11 @@ std::vector<std::string> detect_mode_flags(const std::filesystem::path& clothcd,
   return detect_mode_flags_from_help(child.output, mode);
 }
 
+bool detect_has_earliest(const std::filesystem::path& clothcd) {
+  const ChildRun child = run_child({clothcd.string(), "detect", "--help"}, 1);
+  return child.exit_code == 0 && lists_option(child.output, "--earliest");
+}
+
 DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
                      const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus,
                      const std::vector<std::string>& flags) {
@@ -154,6 +159,30 @@ DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem
     run.earliest_toi = std::min(run.earliest_toi, e.toi);
   }
   run.digest = digest.hex();
+  return run;
+}
+
+EarliestRun run_earliest(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
+                         const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus) {
+  const ChildRun child = run_child(
+      {clothcd.string(), "detect", t0.string(), t1.string(), "--earliest", "--out", json_out.string()}, cpus);
+  if (child.exit_code != 0)
+    throw std::runtime_error("clothcd detect --earliest " + t0.string() + " failed (exit " +
+                             std::to_string(child.exit_code) + "): " + child.output);
+  const std::string context = json_out.string();
+  const Json root = parse(read_text(json_out), context);
+  const Json& counts = member(root, "counts", context);
+  const Json& times = member(root, "times_ms", context);
+  const Json& earliest = member(root, "earliest", context);
+  EarliestRun run;
+  run.toi = member(earliest, "toi", context).get<double>();
+  run.windows = member(earliest, "windows", context).get<int>();
+  run.candidates = member(counts, "candidates_vertex_face", context).get<long>() +
+                   member(counts, "candidates_edge_edge", context).get<long>();
+  run.refit_ms = member(times, "refit", context).get<double>();
+  run.traversal_ms = member(times, "traversal", context).get<double>();
+  run.culling_ms = member(times, "filters", context).get<double>();
+  run.exact_ms = member(times, "exact", context).get<double>();
   return run;
 }
 

@@ -56,6 +56,29 @@ enum class DetectMode {
                                    const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus,
                                    const std::vector<std::string>& flags);
 
+/// What one `clothcd detect --earliest` run measured.
+struct EarliestRun {
+  double toi = 1;           ///< The step's earliest time of impact (1: no contact).
+  int windows = 0;          ///< Time windows searched.
+  long candidates = 0;      ///< Candidate pairs, summed over the windows.
+  double refit_ms = 0;      ///< Hierarchy refits, summed over the windows.
+  double traversal_ms = 0;  ///< Candidate search.
+  double culling_ms = 0;    ///< Culling stage.
+  double exact_ms = 0;      ///< Exact CCD.
+
+  /// The whole search, as DetectRun::whole_ms counts a detection.
+  [[nodiscard]] double whole_ms() const { return refit_ms + traversal_ms + culling_ms + exact_ms; }
+};
+
+/// True when `clothcd detect --help` of the program `clothcd` lists `--earliest` (older programs have no such search).
+[[nodiscard]] bool detect_has_earliest(const std::filesystem::path& clothcd);
+
+/// Runs `clothcd detect t0 t1 --earliest --out json_out` on the first `cpus` CPUs and reads its JSON. Throws
+/// std::runtime_error with the program's output when it fails.
+[[nodiscard]] EarliestRun run_earliest(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
+                                       const std::filesystem::path& t1, const std::filesystem::path& json_out,
+                                       int cpus);
+
 /// Ground-truth pairs of `truth_json` (the shared scenes' format: "vf": [[vertex, face]...], "ee": [[[a0, a1],
 /// [b0, b1]]...]) that `found` (sorted) lacks, and how many pairs the file lists.
 struct TruthCheck {
