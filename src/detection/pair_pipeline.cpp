@@ -184,10 +184,12 @@ void PairPipeline::find_earliest(Worker& w, int survivors, int filtered, ccd::Cc
   const ccd::PairBlock& block = w.block;
   const auto t = StageClock::now();
   const std::uint64_t kind_offset = block.kind() == PairKind::EdgeEdge ? keys_->vertex_face_key_count() : 0;
+  long hits = 0;
   for (int i = 0; i < survivors; ++i) {
     const double until = std::min(s.window, earliest_toi_.load(std::memory_order_relaxed));
     const ccd::CcdResult r = ccd::continuous_collision_until(block.query(i), s.ccd,
                                                              i < filtered ? applied : ccd::CcdFilter::None, until);
+    hits += r.hit ? 1 : 0;
     double best = earliest_toi_.load(std::memory_order_relaxed);
     if (!r.hit || r.toi > best) continue;
     KeyedCollision hit;
@@ -198,6 +200,7 @@ void PairPipeline::find_earliest(Worker& w, int survivors, int filtered, ccd::Cc
     }
   }
   w.counts.exact_ms += milliseconds_since(t);
+  if (hits > 0) found_.fetch_add(hits, std::memory_order_relaxed);
 }
 
 KeyedCollision PairPipeline::earliest() const {

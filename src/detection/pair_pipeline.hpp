@@ -80,8 +80,9 @@ struct PipelineSettings {
   const std::function<bool()>* cancel = nullptr;
   /// With `exact`: search the earliest contact instead of every collision. Each survivor is tested only up to the
   /// earliest time of impact found so far by any thread, or `window` when that is earlier
-  /// (ccd::continuous_collision_until), no collisions are kept (and none count in the budget), and each thread keeps
-  /// its earliest hit (PairPipeline::earliest).
+  /// (ccd::continuous_collision_until), no collisions are kept, and each thread keeps its earliest hit
+  /// (PairPipeline::earliest). The pairs that collide within that bound count in the budget: a degenerate step (all
+  /// of a collapsing cloth touching at the end) stops as detect() does.
   bool earliest = false;
   double window = 1.0;  ///< With `earliest`: the part of the step the search needs.
   /// With `earliest`: a time of impact found before this search (an earlier window's); pairs are tested up to it.

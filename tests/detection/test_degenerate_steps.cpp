@@ -114,6 +114,32 @@ TEST_CASE("collapsing grids stop promptly at the collision budget, in bounded me
   if (test::kMemoryCountersMeaningful) CHECK(peak <= kBytesPerCollision * settings.max_collisions + kFixedBytes);
 }
 
+TEST_CASE("the earliest-impact search of a collapsing grid stops at the collision budget too",
+          "[detection][degenerate][earliest]") {
+  // Every pair touches at the end of the step, so every one must be examined: the budget ends it as it ends detect().
+  const int n = GENERATE(40, 80);
+  const TriangleMesh grid = make_grid(n, n);
+  const Vertices point = collapsed(grid);
+  DetectorSettings settings;
+  settings.max_collisions = 250'000;
+  CollisionDetector detector(grid.faces, static_cast<int>(grid.vertex_count()), settings);
+  long reached = 0;
+  try {
+    (void)detector.earliest_impact(grid.vertices, point);
+  } catch (const CollisionBudgetExceeded& e) {
+    reached = e.collisions();
+  }
+  INFO("grid " << n << " x " << n << ": stopped at " << reached << " collisions");
+  REQUIRE(reached > settings.max_collisions);
+  CHECK(reached <= settings.max_collisions + budget_overshoot(settings));
+  // The detector stays usable: a step moving the grid away has no contact.
+  Vertices lifted = grid.vertices;
+  lifted.col(1).array() += 0.5;
+  const EarliestImpact free = detector.earliest_impact(grid.vertices, lifted);
+  CHECK_FALSE(free.hit);
+  CHECK(free.toi == 1.0);
+}
+
 TEST_CASE("after a failed call the detector answers like a fresh one, and a re-test reuses nothing of it",
           "[detection][degenerate][reuse]") {
   const test::ClothOverSphere step = test::cloth_over_sphere(0.14);

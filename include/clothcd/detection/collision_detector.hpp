@@ -147,7 +147,10 @@ class CollisionDetector {
   /// then 1/4, then all of it) and tests each pair only up to the earliest contact found so far, so an early contact
   /// costs far less than detect(). The answer does not depend on the thread count. Like detect(), it ends the step
   /// (a moved obstacle rests at its end afterwards) and throws std::invalid_argument on wrong sizes or non-finite
-  /// coordinates and DetectionCancelled when cancelled; the next detect() searches its step in full.
+  /// coordinates, DetectionCancelled when cancelled, and CollisionBudgetExceeded when more than
+  /// DetectorSettings::max_collisions pairs of a window come into contact no later than the earliest contact found so
+  /// far (a degenerate step: a cloth collapsing to a point touches everywhere at its end, and every such pair must be
+  /// examined); the next detect() searches its step in full.
   EarliestImpact earliest_impact(const PositionsRef& start, const PositionsRef& end);
 
   /// Counts and times of the last detect() or earliest_impact() call.
