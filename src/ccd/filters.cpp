@@ -19,6 +19,7 @@
 
 #include "ccd/projection_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/ccd/pair_measures.hpp"
 
 namespace clothcd::ccd {
 
@@ -87,12 +88,6 @@ double threshold_for(double thickness, double norm) {
   return thickness * norm * (1.0 + 1e-12);
 }
 
-// A direction of the projection filter with its length.
-struct Direction {
-  Eigen::Vector3d s;
-  double norm;
-};
-
 // A thickness the filters can reason with: finite and >= 0 (else they cull nothing; continuous_collision reports such a
 // query as a conservative hit).
 bool usable_thickness(const CcdSettings& settings) {
@@ -155,11 +150,6 @@ bool separated_in_plane(const CcdQuery& query, const CcdSettings& settings) {
 bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
                              const ProjectionFilterOptions& options) {
   if (!usable_thickness(settings)) return false;
-  // Eq. (10)'s directions without their normalisation (the sign tests do not depend on it; h is scaled by |s|).
-  static const std::array<Direction, 5> kDirections{
-      Direction{Eigen::Vector3d(1, 0, 0), 1.0}, Direction{Eigen::Vector3d(1, 1, 0), std::sqrt(2.0)},
-      Direction{Eigen::Vector3d(1, 0, 1), std::sqrt(2.0)}, Direction{Eigen::Vector3d(0, 1, 1), std::sqrt(2.0)},
-      Direction{Eigen::Vector3d(1, 1, 1), std::sqrt(3.0)}};
   // The primitives' own directions first when asked: they separate most pairs that can be separated (a cloth resting
   // above a surface), so the fixed directions are rarely reached.
   if (options.use_primitive_normals) {
@@ -174,8 +164,11 @@ bool projection_filter_culls(const CcdQuery& query, const CcdSettings& settings,
       if (separated_along(query, s, threshold_for(settings.thickness, norm))) return true;
     }
   }
-  for (const Direction& d : kDirections)
-    if (separated_along(query, d.s, threshold_for(settings.thickness, d.norm))) return true;
+  // Eq. (10)'s directions without their normalisation (the sign tests do not depend on it; h is scaled by |s|).
+  for (const pair_measures::ProjectionDirection& d : pair_measures::kProjectionDirections) {
+    const Eigen::Vector3d s(d.s[0], d.s[1], d.s[2]);
+    if (separated_along(query, s, threshold_for(settings.thickness, d.norm))) return true;
+  }
   return options.use_primitive_normals && detail::separated_in_plane(query, settings);
 }
 

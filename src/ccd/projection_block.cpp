@@ -11,10 +11,12 @@
 #include "ccd/projection_block.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
+#include "clothcd/ccd/pair_measures.hpp"
 #include "support/simd.hpp"
-
 
 namespace clothcd::ccd::detail {
 
@@ -27,6 +29,8 @@ constexpr double kLargest = 1e100;
 constexpr double kNormSlack = 1.0 + 1e-12;
 
 using Lanes = simd::LaneArray<kLanes>;
+// A lane group's coordinates, x[time][point][axis][lane].
+using Coordinates = double[2][4][3][kLanes];
 
 // Lambdas do not take the target attribute (AVX2, AVX-512) of the function they are written in, and GCC may leave one
 // out of line even inside a `flatten` function: those of the filter are forced inline, so that none is compiled for
@@ -55,6 +59,44 @@ template <bool VertexFace, class Dot>
     }
     culled[i] = ((above > 0.0) | (below < 0.0)) ? 1.0 : culled[i];
   }
+}
+
+// s . p for fixed direction D of pair_measures::kProjectionDirections (components 0 or 1): the sum of p's coordinates
+// along s's unit components in axis order ((x + y) + z for (1, 1, 1)), no product needed.
+template <std::size_t D>
+[[gnu::always_inline]] inline double fixed_projection(double px, double py, double pz) {
+  constexpr std::array<double, 3> s = pair_measures::kProjectionDirections[D].s;
+  constexpr bool use_x = s[0] != 0.0, use_y = s[1] != 0.0, use_z = s[2] != 0.0;
+  static_assert(use_x || use_y || use_z, "a direction has a unit component");
+  if constexpr (use_x && use_y && use_z) return (px + py) + pz;
+  if constexpr (use_x && use_y && !use_z) return px + py;
+  if constexpr (use_x && !use_y && use_z) return px + pz;
+  if constexpr (!use_x && use_y && use_z) return py + pz;
+  if constexpr (use_x && !use_y && !use_z) return px;
+  if constexpr (!use_x && use_y && !use_z) return py;
+  if constexpr (!use_x && !use_y && use_z) return pz;
+}
+
+// Fixed direction D on every lane.
+template <bool VertexFace, std::size_t D>
+[[gnu::always_inline]] inline void try_fixed_direction(const Coordinates& x, double thickness, const Lanes& largest,
+                                                       Lanes& threshold, Lanes& culled) {
+  constexpr double norm = pair_measures::kProjectionDirections[D].norm, l1 = pair_measures::kProjectionDirections[D].l1;
+  for (int i = 0; i < kLanes; ++i) {
+    threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
+  }
+  const auto dot = [&](int t, int k, int i) INLINE_LAMBDA {
+    return fixed_projection<D>(x[t][k][0][i], x[t][k][1][i], x[t][k][2][i]);
+  };
+  try_direction<VertexFace>(dot, threshold, culled);
+}
+
+// Every fixed direction in turn.
+template <bool VertexFace, std::size_t... D>
+[[gnu::always_inline]] inline void fixed_directions(const Coordinates& x, double thickness,
+                                                    const Lanes& largest, Lanes& threshold, Lanes& culled,
+                                                    std::index_sequence<D...>) {
+  (try_fixed_direction<VertexFace, D>(x, thickness, largest, threshold, culled), ...);
 }
 
 // The directions of one pass (BlockPass).
@@ -133,21 +175,10 @@ template <bool VertexFace, bool Thick>
       cross(a, e, n);
     });
   }
-  // Eq. (10)'s five directions (unnormalised): (1,0,0), (1,1,0), (1,0,1), (0,1,1), (1,1,1).
-  auto fixed = [&](double norm, double l1, const auto& dot) INLINE_LAMBDA {
-    for (int i = 0; i < kLanes; ++i) {
-      threshold[i] = thickness * norm * kNormSlack + kBoundFactor * l1 * largest[i] + kTiny;
-    }
-    try_direction<VertexFace>(dot, threshold, culled);
-  };
+  // Eq. (10)'s five directions (pair_measures::kProjectionDirections), each projection a sum of coordinates.
   if (pass.fixed) {
-    const double root2 = std::sqrt(2.0), root3 = std::sqrt(3.0);
-    fixed(1.0, 1.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][0][i]; });
-    fixed(root2, 2.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][0][i] + x[t][k][1][i]; });
-    fixed(root2, 2.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][0][i] + x[t][k][2][i]; });
-    fixed(root2, 2.0, [&](int t, int k, int i) INLINE_LAMBDA { return x[t][k][1][i] + x[t][k][2][i]; });
-    fixed(root3, 3.0,
-          [&](int t, int k, int i) INLINE_LAMBDA { return (x[t][k][0][i] + x[t][k][1][i]) + x[t][k][2][i]; });
+    fixed_directions<VertexFace>(x, thickness, largest, threshold, culled,
+                                 std::make_index_sequence<pair_measures::kProjectionDirections.size()>{});
   }
   for (int time = 0; time < 2 && pass.in_plane; ++time) {
     if constexpr (VertexFace) {

@@ -15,7 +15,7 @@
 // them exceed (h + margin) |n| at both ends, they do on the whole piece, and so does the distance. This clears in one
 // step the pieces of a pair sliding past at just over h, which the Lipschitz bound only clears after many splits.
 // margin covers the double evaluation of positions and distances (a few ulps of the coordinates) and the 1e-8
-// degeneracy cut-off of closest_points.cpp (relative to the pair's extent).
+// degeneracy cut-off of geometry/closest_points.cpp (relative to the pair's extent).
 #include "ccd/thickness_contact.hpp"
 
 #include <algorithm>
@@ -23,11 +23,15 @@
 #include <cmath>
 #include <limits>
 
-#include "ccd/closest_points.hpp"
+#include "clothcd/geometry/closest_points.hpp"
 
 namespace clothcd::ccd::detail {
 
 namespace {
+
+using geometry::ClosestPoints;
+using geometry::point_triangle_closest;
+using geometry::segment_segment_closest;
 
 constexpr int kMaxDepth = 24;           // pieces down to 6e-8 of the step
 constexpr int kMaxEvaluations = 4096;   // bounded work for grazing contacts at exactly h

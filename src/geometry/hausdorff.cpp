@@ -1,6 +1,6 @@
 // Two-sided sampled Hausdorff distance in the manner of Metro (P. Cignoni, C. Rocchini, R. Scopigno, "Metro: measuring
 // error on simplified surfaces", 1998): samples of each surface (vertices, face centroids, random area-weighted points)
-// against the exact closest point of the other surface (C. Ericson, "Real-Time Collision Detection", 5.1.5), found
+// against the exact closest point of the other surface (geometry/primitive_distance.hpp: Ericson's 5.1.5), found
 // through a median-split bounding volume hierarchy.
 #include "clothcd/geometry/hausdorff.hpp"
 
@@ -11,32 +11,12 @@
 #include <vector>
 
 #include "clothcd/geometry/bounding_volumes.hpp"
+#include "clothcd/geometry/primitive_distance.hpp"
 
 namespace clothcd::geometry {
 namespace {
 
 using Point = Eigen::Vector3d;
-
-Point closest_on_triangle(const Point& p, const Point& a, const Point& b, const Point& c) {
-  const Point ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Point bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
-  const Point cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = va + vb + vc;
-  if (denom == 0) return a;  // degenerate triangle: one of its points is good enough (edges were tested above)
-  return a + ab * (vb / denom) + ac * (vc / denom);
-}
 
 class TriangleTree {
  public:
@@ -63,7 +43,7 @@ class TriangleTree {
       if (node.count > 0) {
         for (int i = node.first; i < node.first + node.count; ++i) {
           const int f = order_[size_t(i)];
-          best2 = std::min(best2, (closest_on_triangle(p, corner(f, 0), corner(f, 1), corner(f, 2)) - p).squaredNorm());
+          best2 = std::min(best2, point_triangle_distance_squared(p, corner(f, 0), corner(f, 1), corner(f, 2)));
         }
         continue;
       }

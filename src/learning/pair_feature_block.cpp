@@ -1,17 +1,21 @@
 // Pair features in blocks (see pair_feature_block.hpp). Every expression below is the per-pair code's
 // (pair_features.cpp) written lane by lane: the same operands, the same association, Eigen's order for its
-// expressions (a 3-vector dot product or squared norm is (x0 y0 + x1 y1) + x2 y2); minima and maxima may pick the
-// other of two equal zeros, which changes no feature value beyond the sign of a zero.
+// expressions (a 3-vector dot product or squared norm is (x0 y0 + x1 y1) + x2 y2), and the measures the filters share
+// (clothcd/ccd/pair_measures.hpp: eq. 10's directions, the Bernstein coefficients, the signed margins) from the same
+// templates as the per-pair code.
 #include "learning/pair_feature_block.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
+#include "clothcd/ccd/pair_measures.hpp"
 #include "clothcd/simd_level.hpp"
-#include "support/simd.hpp"
 #include "learning/cube_root.hpp"
+#include "support/simd.hpp"
 
 namespace clothcd::learning::detail {
 namespace {
@@ -48,18 +52,6 @@ struct GroupPositions {
   return b;
 }
 
-// max(smallest, -largest) of `n` lanes-values: same_sign_margin of the per-pair code.
-[[gnu::always_inline]] inline Lanes same_sign_margin(const Lanes* values, int n) {
-  Lanes lo = values[0], hi = values[0];
-  for (int k = 1; k < n; ++k) {
-    lo = lane_min(lo, values[k]);
-    hi = lane_max(hi, values[k]);
-  }
-  Lanes minus_hi;
-  for (int l = 0; l < kLanes; ++l) minus_hi.v[l] = -hi.v[l];
-  return lane_max(lo, minus_hi);
-}
-
 // Lanes of `edge_edge` where the mask is 1, of `vertex_face` elsewhere.
 [[gnu::always_inline]] inline Vec3 select(const Lanes& mask, const Vec3& edge_edge, const Vec3& vertex_face) {
   Vec3 r;
@@ -68,38 +60,26 @@ struct GroupPositions {
   return r;
 }
 
-// The differences whose projections are the gaps of the projection filter, at both times: vertex-face, point 0 minus
-// points 1, 2, 3 and the last once more; edge-edge, points 0, 1 minus points 2, 3 (a repeated gap changes neither
-// extreme of the gaps).
+// The differences whose projections are the gaps of the projection filter at both times (pair_measures::kGapPoints
+// of the lane's kind).
 struct GapVectors {
   Vec3 d[2][4];
 };
 
+// Gap j at time t of every lane (the indices constants, so that no lane loop waits on an index).
+template <std::size_t... J>
+[[gnu::always_inline]] inline void gap_differences(const Vec3* x, const Lanes& is_edge_edge, Vec3 (&d)[4],
+                                                   std::index_sequence<J...>) {
+  constexpr auto& vf = ccd::pair_measures::kGapPoints[static_cast<int>(PairKind::VertexFace)];
+  constexpr auto& ee = ccd::pair_measures::kGapPoints[static_cast<int>(PairKind::EdgeEdge)];
+  ((d[J] = select(is_edge_edge, x[ee[J][0]] - x[ee[J][1]], x[vf[J][0]] - x[vf[J][1]])), ...);
+}
+
 [[gnu::always_inline]] inline GapVectors gap_vectors(const GroupPositions& b) {
   GapVectors g;
-  for (int t = 0; t < 2; ++t) {
-    const Vec3* x = b.x[t];
-    g.d[t][0] = select(b.is_edge_edge, x[0] - x[2], x[0] - x[1]);
-    g.d[t][1] = select(b.is_edge_edge, x[0] - x[3], x[0] - x[2]);
-    g.d[t][2] = select(b.is_edge_edge, x[1] - x[2], x[0] - x[3]);
-    g.d[t][3] = select(b.is_edge_edge, x[1] - x[3], x[0] - x[3]);
-  }
+  for (int t = 0; t < 2; ++t) gap_differences(b.x[t], b.is_edge_edge, g.d[t], std::make_index_sequence<4>{});
   return g;
 }
-
-// same_sign_margin of the gaps along direction s.
-[[gnu::always_inline]] inline Lanes projection_margin(const GapVectors& g, const double* s) {
-  Lanes gaps[8];
-  for (int t = 0; t < 2; ++t)
-    for (int j = 0; j < 4; ++j) gaps[4 * t + j] = dot(g.d[t][j], s);
-  return same_sign_margin(gaps, 8);
-}
-
-const double kDirections[5][3] = {{1.0, 0.0, 0.0},
-                                  {std::sqrt(0.5), std::sqrt(0.5), 0.0},
-                                  {std::sqrt(0.5), 0.0, std::sqrt(0.5)},
-                                  {0.0, std::sqrt(0.5), std::sqrt(0.5)},
-                                  {std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0)}};
 
 // Features of one block (all lanes filled) into out[f][lane] for f < kMaxPairFeatures.
 [[gnu::always_inline]] inline void block_features(const GroupPositions& b, std::size_t features,
@@ -121,22 +101,17 @@ const double kDirections[5][3] = {{1.0, 0.0, 0.0},
     volume_scale.v[l] = length_scale.v[l] * length_scale.v[l] * length_scale.v[l];
   }
   // Bernstein coefficients of the coplanarity cubic.
-  const Vec3 a1 = s[1] - s[0], a2 = s[2] - s[0], a3 = s[3] - s[0];
-  const Vec3 v1 = (e[1] - e[0]) - a1, v2 = (e[2] - e[0]) - a2, v3 = (e[3] - e[0]) - a3;
-  const Lanes c0 = dot(cross(a1, a2), a3);
-  const Lanes c1 = dot(cross(v1, a2), a3) + dot(cross(a1, v2), a3) + dot(cross(a1, a2), v3);
-  const Lanes c2 = dot(cross(v1, v2), a3) + dot(cross(v1, a2), v3) + dot(cross(a1, v2), v3);
-  const Lanes c3 = dot(cross(v1, v2), v3);
-  const Lanes bernstein[4] = {c0, c0 + c1 / 3.0, c0 + (2.0 * c1 + c2) / 3.0, c0 + c1 + c2 + c3};
-  const Lanes algebraic = lane_cbrt(same_sign_margin(bernstein, 4) * volume_scale);
+  const std::array<Lanes, 4> bernstein = ccd::pair_measures::coplanarity_bernstein(s, e);
+  const Lanes algebraic = lane_cbrt(ccd::pair_measures::same_sign_margin(bernstein.data(), 4) * volume_scale);
   Lanes bernstein_roots[4];
-  for (int k = 0; k < 4; ++k) bernstein_roots[k] = lane_cbrt(bernstein[k] * volume_scale);
+  for (int k = 0; k < 4; ++k) bernstein_roots[k] = lane_cbrt(bernstein[static_cast<std::size_t>(k)] * volume_scale);
   Lanes best;
   for (int l = 0; l < kLanes; ++l) best.v[l] = -1.0;
   Lanes projections[5];
   const GapVectors gaps = gap_vectors(b);
   for (int d = 0; d < 5; ++d) {
-    const Lanes margin = projection_margin(gaps, kDirections[d]) * length_scale;
+    const auto& direction = ccd::pair_measures::kProjectionDirections[static_cast<std::size_t>(d)];
+    const Lanes margin = ccd::pair_measures::projection_margin(gaps.d, direction.unit.data()) * length_scale;
     for (int l = 0; l < kLanes; ++l)
       projections[d].v[l] = std::copysign(std::sqrt(std::abs(margin.v[l])), margin.v[l]);
     best = lane_max(best, projections[d]);

@@ -15,6 +15,7 @@
 
 #include <Eigen/Geometry>
 
+#include "clothcd/ccd/pair_measures.hpp"
 #include "learning/cube_root.hpp"
 #include "learning/pair_feature_block.hpp"
 
@@ -26,45 +27,15 @@ const char* const kFeatureNames[kMaxPairFeatures] = {
     "projection_s4", "projection_s5",    "bernstein_b0",      "bernstein_b1",  "bernstein_b2",  "bernstein_b3",
     "relative_motion", "gap_start",      "is_edge_edge",      "gap_end",       "area_start",    "area_end"};
 
-// The paper's projection directions (eq. 10).
-const Eigen::Vector3d kDirections[5] = {
-    Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(std::sqrt(0.5), std::sqrt(0.5), 0.0),
-    Eigen::Vector3d(std::sqrt(0.5), 0.0, std::sqrt(0.5)), Eigen::Vector3d(0.0, std::sqrt(0.5), std::sqrt(0.5)),
-    Eigen::Vector3d(std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0), std::sqrt(1.0 / 3.0))};
-
-// Signed margin of "all values have one strict sign": min when all positive, -max when all negative, else <= 0.
-double same_sign_margin(const double* values, int count) {
-  const auto [lo, hi] = std::minmax_element(values, values + count);
-  return std::max(*lo, -*hi);
-}
-
-// Bernstein coefficients of D(t) on [0, 1] from the power-basis coefficients of the triple product.
-std::array<double, 4> coplanarity_bernstein(const ccd::CcdQuery& pair) {
-  const Eigen::Vector3d a1 = pair.start[1] - pair.start[0], a2 = pair.start[2] - pair.start[0],
-                        a3 = pair.start[3] - pair.start[0];
-  const Eigen::Vector3d v1 = (pair.end[1] - pair.end[0]) - a1, v2 = (pair.end[2] - pair.end[0]) - a2,
-                        v3 = (pair.end[3] - pair.end[0]) - a3;
-  const double c0 = a1.cross(a2).dot(a3);
-  const double c1 = v1.cross(a2).dot(a3) + a1.cross(v2).dot(a3) + a1.cross(a2).dot(v3);
-  const double c2 = v1.cross(v2).dot(a3) + v1.cross(a2).dot(v3) + a1.cross(v2).dot(v3);
-  const double c3 = v1.cross(v2).dot(v3);
-  return {c0, c0 + c1 / 3.0, c0 + (2.0 * c1 + c2) / 3.0, c0 + c1 + c2 + c3};
-}
-
-// Projected gaps of eq. 8 (vertex-face: vertex minus each triangle corner) or eq. 9 (edge-edge: each end of one edge
-// minus each end of the other), at t = 0 and t = 1, along direction s; returns their count.
-int projected_gaps(const ccd::CcdQuery& pair, const Eigen::Vector3d& s, double* gaps) {
-  int n = 0;
-  for (const auto* positions : {&pair.start, &pair.end}) {
-    const auto& x = *positions;
-    if (pair.kind == PairKind::VertexFace) {
-      for (int k = 1; k < 4; ++k) gaps[n++] = (x[0] - x[k]).dot(s);
-    } else {
-      for (int a = 0; a < 2; ++a)
-        for (int b = 2; b < 4; ++b) gaps[n++] = (x[a] - x[b]).dot(s);
+// The differences of the projected gaps at both times (eqs. 8-9).
+void gap_vectors(const ccd::CcdQuery& pair, Eigen::Vector3d (&gap)[2][4]) {
+  const auto& points = ccd::pair_measures::kGapPoints[static_cast<int>(pair.kind)];
+  for (int t = 0; t < 2; ++t) {
+    const auto& x = t == 0 ? pair.start : pair.end;
+    for (int j = 0; j < 4; ++j) {
+      gap[t][j] = x[static_cast<std::size_t>(points[j][0])] - x[static_cast<std::size_t>(points[j][1])];
     }
   }
-  return n;
 }
 
 // Distance between the centres of the two primitives (vertex vs triangle centroid, edge midpoint vs edge midpoint).
@@ -110,15 +81,18 @@ void compute_pair_features(const ccd::CcdQuery& pair, const FeatureSettings& set
   // A pair of zero size cannot be scaled; all-zero features say "no margin", so the network cannot be sure to drop it.
   if (size > 0.0) {
     const double length_scale = 1.0 / size, volume_scale = length_scale * length_scale * length_scale;
-    const std::array<double, 4> bernstein = coplanarity_bernstein(pair);
+    const std::array<double, 4> bernstein =
+        ccd::pair_measures::coplanarity_bernstein(pair.start.data(), pair.end.data());
     // Cube roots of the volumes and signed square roots of the lengths keep the sign (the filters' decision at 0)
     // but spread the values near 0, where the decision is, over the min-max scaled range.
-    all[1] = detail::cube_root(same_sign_margin(bernstein.data(), 4) * volume_scale);
+    all[1] = detail::cube_root(ccd::pair_measures::same_sign_margin(bernstein.data(), 4) * volume_scale);
     double best_projection = -1.0;
+    Eigen::Vector3d gap[2][4];
+    gap_vectors(pair, gap);
     for (int d = 0; d < 5; ++d) {
-      double gaps[8];
-      const int n = projected_gaps(pair, kDirections[d], gaps);
-      const double margin = same_sign_margin(gaps, n) * length_scale;
+      const auto& unit = ccd::pair_measures::kProjectionDirections[static_cast<std::size_t>(d)].unit;
+      const Eigen::Vector3d s(unit[0], unit[1], unit[2]);
+      const double margin = ccd::pair_measures::projection_margin(gap, s) * length_scale;
       all[3 + d] = std::copysign(std::sqrt(std::abs(margin)), margin);
       best_projection = std::max(best_projection, all[3 + d]);
     }

@@ -12,10 +12,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "simulation/primitive_distance.hpp"
+#include "clothcd/geometry/primitive_distance.hpp"
 
 namespace clothcd::simulation {
 namespace {
+
+using geometry::point_triangle_distance_squared;
+using geometry::segment_segment_distance_squared;
 
 /// The four weights of a pair: the contact vector is sum_i w_i x_i, pointing from the second primitive to the first.
 std::array<double, 4> pair_weights(const Collision& c) {
@@ -44,7 +47,9 @@ double primitive_distance(const Collision& c, const Position& position) {
   if (c.kind == PairKind::EdgeEdge) return std::sqrt(segment_segment_distance_squared(p0, p1, p2, p3));
   double d = std::min({segment_segment_distance_squared(p0, p0, p1, p2), segment_segment_distance_squared(p0, p0, p2, p3),
                        segment_segment_distance_squared(p0, p0, p3, p1)});
-  if ((p2 - p1).cross(p3 - p1).squaredNorm() > 0) d = std::min(d, point_triangle_distance_squared(p0, {p1, p2, p3}));
+  if ((p2 - p1).cross(p3 - p1).squaredNorm() > 0) {
+    d = std::min(d, point_triangle_distance_squared(p0, p1, p2, p3, geometry::FaceRounding::Reciprocal));
+  }
   return std::sqrt(d);
 }
 

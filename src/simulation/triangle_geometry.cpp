@@ -1,16 +1,18 @@
 // Triangle-triangle intersection and distance for the independent frame check. Intersection: two triangles meet iff an
 // edge of one meets the other (segment-triangle by orientation signs, as in Segura and Feito 2001), with coplanar pairs
-// reduced to 2D; distance: the minimum over the 6 vertex-triangle and 9 edge-edge distances (Ericson, "Real-Time
-// Collision Detection", 5.1.5 closest point on a triangle and 5.1.9 closest points of two segments).
+// reduced to 2D; distance: the minimum over the 6 vertex-triangle and 9 edge-edge distances (Ericson's closest points,
+// clothcd/geometry/primitive_distance.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "clothcd/geometry/primitive_distance.hpp"
 #include "clothcd/simulation/intersection_check.hpp"
-#include "simulation/primitive_distance.hpp"
 
 namespace clothcd::simulation {
 namespace {
+
+using geometry::segment_segment_distance_squared;
 
 using Vec3 = Eigen::Vector3d;
 using Vec2 = Eigen::Vector2d;
@@ -72,6 +74,11 @@ bool is_degenerate(const Triangle& t, const Vec3& normal) {
   return normal.squaredNorm() <= 1e-24 * scale * scale;
 }
 
+// Squared distance from p to the non-degenerate triangle t, with the simulation's rounding.
+double distance_squared(const Vec3& p, const Triangle& t) {
+  return geometry::point_triangle_distance_squared(p, t.a, t.b, t.c, geometry::FaceRounding::Reciprocal);
+}
+
 double edges_distance_squared(const Triangle& t, const Triangle& u) {
   const Vec3* tv[3] = {&t.a, &t.b, &t.c};
   const Vec3* uv[3] = {&u.a, &u.b, &u.c};
@@ -93,58 +100,6 @@ bool degenerate_intersects(const Triangle& d, const Triangle& u, const Vec3& u_n
 
 }  // namespace
 
-/// Squared distance between segments p1q1 and p2q2 (Ericson 5.1.9, with its degenerate-segment branches).
-double segment_segment_distance_squared(const Eigen::Vector3d& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
-  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  constexpr double kTiny = 1e-300;
-  double s = 0, t = 0;
-  if (a <= kTiny && e <= kTiny) return r.squaredNorm();
-  if (a <= kTiny) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= kTiny) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return ((p1 + s * d1) - (p2 + t * d2)).squaredNorm();
-}
-
-/// Squared distance from p to a non-degenerate triangle (Ericson 5.1.5, Voronoi regions).
-double point_triangle_distance_squared(const Eigen::Vector3d& p, const Triangle& t) {
-  const Vec3 ab = t.b - t.a, ac = t.c - t.a, ap = p - t.a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.squaredNorm();
-  const Vec3 bp = p - t.b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.squaredNorm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (t.a + d1 / (d1 - d3) * ab)).squaredNorm();
-  const Vec3 cp = p - t.c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.squaredNorm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (t.a + d2 / (d2 - d6) * ac)).squaredNorm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    return (p - (t.b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (t.c - t.b))).squaredNorm();
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (t.a + ab * (vb * denom) + ac * (vc * denom))).squaredNorm();
-}
-
 bool triangles_intersect(const Triangle& t, const Triangle& u) {
   const Vec3 nt = normal_of(t), nu = normal_of(u);
   const bool t_degenerate = is_degenerate(t, nt), u_degenerate = is_degenerate(u, nu);
@@ -158,12 +113,10 @@ double triangle_distance(const Triangle& t, const Triangle& u) {
   if (triangles_intersect(t, u)) return 0.0;
   double best = edges_distance_squared(t, u);
   if (!is_degenerate(u, normal_of(u))) {
-    best = std::min({best, point_triangle_distance_squared(t.a, u), point_triangle_distance_squared(t.b, u),
-                     point_triangle_distance_squared(t.c, u)});
+    best = std::min({best, distance_squared(t.a, u), distance_squared(t.b, u), distance_squared(t.c, u)});
   }
   if (!is_degenerate(t, normal_of(t))) {
-    best = std::min({best, point_triangle_distance_squared(u.a, t), point_triangle_distance_squared(u.b, t),
-                     point_triangle_distance_squared(u.c, t)});
+    best = std::min({best, distance_squared(u.a, t), distance_squared(u.b, t), distance_squared(u.c, t)});
   }
   return std::sqrt(best);
 }

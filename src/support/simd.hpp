@@ -316,6 +316,13 @@ template <int N>
   for (int l = 0; l < N; ++l) r.v[l] = a.v[l] - b.v[l];
   return r;
 }
+/// Lane by lane -a.
+template <int N>
+[[gnu::always_inline]] inline LaneArray<N> operator-(const LaneArray<N>& a) {
+  LaneArray<N> r;
+  for (int l = 0; l < N; ++l) r.v[l] = -a.v[l];
+  return r;
+}
 /// Lane by lane a b.
 template <int N>
 [[gnu::always_inline]] inline LaneArray<N> operator*(const LaneArray<N>& a, const LaneArray<N>& b) {

@@ -28,30 +28,33 @@
 #error "define CLOTHCD_SIMD_KERNEL or CLOTHCD_SIMD_KERNEL_FUNCTION before including support/simd_versions.hpp"
 #endif
 
+#if !defined(CLOTHCD_SIMD_VERSION_OPEN)
+/// Opens the namespace `name` of one version (closed by the including code): its lane set, `lanes`
+/// (simd::lane_set), and its level, kLevel (SimdLevel::level).
+#define CLOTHCD_SIMD_VERSION_OPEN(name, lane_set, level)        \
+  namespace name {                                              \
+  namespace lanes = ::clothcd::simd::lane_set;                  \
+  [[maybe_unused]] constexpr ::clothcd::SimdLevel kLevel = ::clothcd::SimdLevel::level;
+#endif
+
 #if !defined(CLOTHCD_SIMD_KERNEL_WIDE)
-namespace baseline_kernels {
-namespace lanes = ::clothcd::simd::baseline_lanes;
-[[maybe_unused]] constexpr ::clothcd::SimdLevel kLevel = ::clothcd::SimdLevel::Baseline;
 #define CLOTHCD_SIMD_ENTRY
+CLOTHCD_SIMD_VERSION_OPEN(baseline_kernels, baseline_lanes, Baseline)
 #include CLOTHCD_SIMD_KERNEL
-#undef CLOTHCD_SIMD_ENTRY
 }  // namespace baseline_kernels
+#undef CLOTHCD_SIMD_ENTRY
 #endif
 
 #if defined(CLOTHCD_SIMD_X86)
 #define CLOTHCD_SIMD_ENTRY __attribute__((flatten))
 CLOTHCD_SIMD_BEGIN_AVX2
-namespace avx2_kernels {
-namespace lanes = ::clothcd::simd::avx2_lanes;
-[[maybe_unused]] constexpr ::clothcd::SimdLevel kLevel = ::clothcd::SimdLevel::Avx2;
+CLOTHCD_SIMD_VERSION_OPEN(avx2_kernels, avx2_lanes, Avx2)
 #include CLOTHCD_SIMD_KERNEL
 }  // namespace avx2_kernels
 CLOTHCD_SIMD_END
 #if defined(CLOTHCD_SIMD_KERNEL_AVX512)
 CLOTHCD_SIMD_BEGIN_AVX512
-namespace avx512_kernels {
-namespace lanes = ::clothcd::simd::avx2_lanes;
-[[maybe_unused]] constexpr ::clothcd::SimdLevel kLevel = ::clothcd::SimdLevel::Avx512;
+CLOTHCD_SIMD_VERSION_OPEN(avx512_kernels, avx2_lanes, Avx512)
 #include CLOTHCD_SIMD_KERNEL
 }  // namespace avx512_kernels
 CLOTHCD_SIMD_END

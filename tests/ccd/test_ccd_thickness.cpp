@@ -6,8 +6,8 @@
 #include <random>
 
 #include "ccd/ccd_test_support.hpp"
-#include "ccd/closest_points.hpp"
 #include "ccd/sampled_distance.hpp"
+#include "clothcd/geometry/closest_points.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;
@@ -332,8 +332,8 @@ TEST_CASE("thickness: a reported pair comes within the thickness plus the docume
       std::array<Vector3d, 4> x;
       for (int p = 0; p < 4; ++p) x[p] = (1 - t) * query.start[p] + t * query.end[p];
       const double d = kind == PairKind::VertexFace
-                           ? ccd::detail::point_triangle_closest(x[0], x[1], x[2], x[3]).distance
-                           : ccd::detail::segment_segment_closest(x[0], x[1], x[2], x[3]).distance;
+                           ? clothcd::geometry::point_triangle_closest(x[0], x[1], x[2], x[3]).distance
+                           : clothcd::geometry::segment_segment_closest(x[0], x[1], x[2], x[3]).distance;
       closest = std::min(closest, d);
     }
     INFO("query " << i << " thickness " << settings.thickness << " closest " << closest);

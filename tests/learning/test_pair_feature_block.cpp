@@ -143,6 +143,23 @@ TEST_CASE("batch features equal the per-pair features bit for bit", "[learning][
   check_against_per_pair(degenerate_pairs(), kMaxPairFeatures);
 }
 
+TEST_CASE("batch features equal the per-pair features bit for bit on grid pairs (signed zeros)", "[learning][features]") {
+  // Small integer coordinates: many equal gaps, among them zeros of both signs, where a margin's extreme could pick
+  // either of two equal zeros.
+  std::mt19937_64 rng(53);
+  std::uniform_int_distribution<int> coordinate(-2, 2);
+  std::vector<ccd::CcdQuery> pairs(4000);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    pairs[i].kind = i % 2 == 0 ? PairKind::VertexFace : PairKind::EdgeEdge;
+    for (std::size_t k = 0; k < 4; ++k) {
+      pairs[i].start[k] = Eigen::Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
+      pairs[i].end[k] = Eigen::Vector3d(coordinate(rng), coordinate(rng), coordinate(rng));
+    }
+  }
+  check_against_per_pair(pairs, 15);
+  check_block_against_per_pair(pairs, 15);
+}
+
 TEST_CASE("batch features of no pairs and of one pair", "[learning][features]") {
   PairFeatureBatch batch;
   compute_pair_features(nullptr, 0, FeatureSettings{}, batch);

@@ -8,13 +8,13 @@
 #include <limits>
 #include <random>
 
-#include "ccd/closest_points.hpp"
+#include "clothcd/geometry/closest_points.hpp"
 
 namespace {
 
-using clothcd::ccd::detail::ClosestPoints;
-using clothcd::ccd::detail::point_triangle_closest;
-using clothcd::ccd::detail::segment_segment_closest;
+using clothcd::geometry::ClosestPoints;
+using clothcd::geometry::point_triangle_closest;
+using clothcd::geometry::segment_segment_closest;
 using Eigen::Vector3d;
 
 constexpr int kGrid = 160;
@@ -71,7 +71,7 @@ void check_consistent(const ClosestPoints& c, double grid_best, double extent) {
 
 }  // namespace
 
-TEST_CASE("point-triangle closest points match a dense grid", "[ccd][closest]") {
+TEST_CASE("point-triangle closest points match a dense grid", "[geometry][closest]") {
   Shapes shapes(61);
   for (int trial = 0; trial < 600; ++trial) {
     const auto x = shapes.four(trial % 6 == 5 ? 0 : trial % 6);
@@ -86,7 +86,7 @@ TEST_CASE("point-triangle closest points match a dense grid", "[ccd][closest]") 
   }
 }
 
-TEST_CASE("segment-segment closest points match a dense grid", "[ccd][closest]") {
+TEST_CASE("segment-segment closest points match a dense grid", "[geometry][closest]") {
   Shapes shapes(67);
   for (int trial = 0; trial < 600; ++trial) {
     const auto x = shapes.four(trial % 6);

@@ -7,12 +7,12 @@
 // primitive is far from degenerate (sine above 1e-8), so its error stays a small multiple of the unit roundoff / 1e-8
 // times the pair's extent; the thickness test covers that with its margin. When the interior candidate lies on both
 // primitives it is the minimum, and the boundary is skipped.
-#include "ccd/closest_points.hpp"
+#include "clothcd/geometry/closest_points.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace clothcd::ccd::detail {
+namespace clothcd::geometry {
 
 namespace {
 
@@ -118,4 +118,4 @@ ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Ve
   return nearest.finish();
 }
 
-}  // namespace clothcd::ccd::detail
+}  // namespace clothcd::geometry

@@ -1,10 +1,14 @@
 #pragma once
-// Closest points between a point and a triangle and between two segments, in double precision, robust to degenerate
-// (zero-area, zero-length, parallel) primitives. Internal to the CCD.
-#include <Eigen/Dense>
+/// @file
+/// Closest points between a point and a triangle and between two segments, in double precision, robust to degenerate
+/// (zero-area, zero-length, parallel) primitives, with the contact parameters: the CCD's thickness test uses them.
+/// The Hausdorff measure and the simulation use Ericson's Voronoi-region tests
+/// (clothcd/geometry/primitive_distance.hpp).
 #include <array>
 
-namespace clothcd::ccd::detail {
+#include <Eigen/Dense>
+
+namespace clothcd::geometry {
 
 /// Closest points of two primitives: their distance, the contact parameters and the two points.
 struct ClosestPoints {
@@ -14,8 +18,9 @@ struct ClosestPoints {
   Eigen::Vector3d second = Eigen::Vector3d::Zero();  ///< Closest point on the second primitive (triangle / edge b).
 };
 
-/// Closest points of point p (first) and triangle t0 t1 t2 (second, = t0 + w1 (t1 - t0) + w2 (t2 - t0)). Near-degenerate triangles (sine of the corner angle below 1e-8) are treated as
-/// their three edges, which changes the distance by at most 1e-8 times the longest edge.
+/// Closest points of point p (first) and triangle t0 t1 t2 (second, = t0 + w1 (t1 - t0) + w2 (t2 - t0)).
+/// Near-degenerate triangles (sine of the corner angle below 1e-8) are treated as their three edges, which changes the
+/// distance by at most 1e-8 times the longest edge.
 [[nodiscard]] ClosestPoints point_triangle_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
                                                    const Eigen::Vector3d& t1, const Eigen::Vector3d& t2);
 
@@ -24,4 +29,4 @@ struct ClosestPoints {
 [[nodiscard]] ClosestPoints segment_segment_closest(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
                                                     const Eigen::Vector3d& b0, const Eigen::Vector3d& b1);
 
-}  // namespace clothcd::ccd::detail
+}  // namespace clothcd::geometry
