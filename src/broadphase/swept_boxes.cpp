@@ -17,27 +17,29 @@ FlatBox empty_flat_box() {
 
 namespace {
 
+// x - half and x + half round to nearest, off by at most half a unit in the last place; moving the result outwards by
+// 2^-52 of its magnitude (at least one unit in the last place, exact) and the smallest subnormal covers that rounding.
+double grown_min(double x, double half) {
+  if (half == 0.0) return x;
+  const double r = x - half;
+  return r - (std::fabs(r) * 0x1p-52 + 0x1p-1074);
+}
+
+double grown_max(double x, double half) {
+  if (half == 0.0) return x;
+  const double r = x + half;
+  return r + (std::fabs(r) * 0x1p-52 + 0x1p-1074);
+}
+
 // The swept box of vertex v into `box`.
 void vertex_box(const Vertices& start, const Vertices& end, double thickness, int v, FlatBox& box) {
   const double* p = start.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double half = 0.5 * thickness;
-  // x - half rounds to nearest, off by at most half a unit in the last place; moving the result outwards by 2^-52 of
-  // its magnitude (at least one unit in the last place, exact) and the smallest subnormal covers that rounding.
-  auto grown_min = [half](double x) {
-    if (half == 0.0) return x;
-    const double r = x - half;
-    return r - (std::fabs(r) * 0x1p-52 + 0x1p-1074);
-  };
-  auto grown_max = [half](double x) {
-    if (half == 0.0) return x;
-    const double r = x + half;
-    return r + (std::fabs(r) * 0x1p-52 + 0x1p-1074);
-  };
   for (int k = 0; k < 3; ++k) {
     const double a = p[k], c = q[k];
-    box.min[k] = grown_min(a < c ? a : c);
-    box.max[k] = grown_max(a < c ? c : a);
+    box.min[k] = grown_min(a < c ? a : c, half);
+    box.max[k] = grown_max(a < c ? c : a, half);
   }
 }
 
@@ -54,13 +56,8 @@ void window_vertex_box(const Vertices& start, const Vertices& end, double window
     if (p[k] == q[k]) continue;
     const double at_window = p[k] + window * (q[k] - p[k]);
     const double slack = std::fmax(std::fabs(p[k]), std::fabs(q[k])) * 0x1p-50 + 0x1p-1074;
-    FlatBox moved;
-    const double low = at_window - slack, high = at_window + slack;
-    const double half = 0.5 * thickness;
-    moved.min[k] = half == 0.0 ? low : (low - half) - (std::fabs(low - half) * 0x1p-52 + 0x1p-1074);
-    moved.max[k] = half == 0.0 ? high : (high + half) + (std::fabs(high + half) * 0x1p-52 + 0x1p-1074);
-    box.min[k] = std::fmin(box.min[k], moved.min[k]);
-    box.max[k] = std::fmax(box.max[k], moved.max[k]);
+    box.min[k] = std::fmin(box.min[k], grown_min(at_window - slack, 0.5 * thickness));
+    box.max[k] = std::fmax(box.max[k], grown_max(at_window + slack, 0.5 * thickness));
   }
 }
 
