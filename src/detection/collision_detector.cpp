@@ -153,6 +153,17 @@ struct CollisionDetector::Impl {
     if (scope.test && scope.earliest_bound == nullptr) collected.take(pipeline, keys, settings.max_collisions);
   }
 
+  // Starts a call of `caller` (its name for the messages): checks the cloth positions, copies them into
+  // current_start / current_end and clears the stats.
+  void begin_call(const PositionsRef& caller_start, const PositionsRef& caller_end, const std::string& caller) {
+    const int vertex_count = bodies.cloth().topology.vertex_count;
+    check_positions(caller_start, vertex_count, caller + ": cloth start positions");
+    check_positions(caller_end, vertex_count, caller + ": cloth end positions");
+    current_start = caller_start;
+    current_end = caller_end;
+    stats = DetectionStats{};
+  }
+
   // Forgets a call that threw: no collisions, no search state, nothing a re-test could reuse.
   void discard() {
     collected.clear();
@@ -202,14 +213,9 @@ const std::vector<int>& CollisionDetector::edges(int body) const {
 const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& caller_start,
                                                        const PositionsRef& caller_end) {
   Impl& d = *impl_;
-  const int vertex_count = d.bodies.cloth().topology.vertex_count;
-  check_positions(caller_start, vertex_count, "detect: cloth start positions");
-  check_positions(caller_end, vertex_count, "detect: cloth end positions");
-  d.current_start = caller_start;
-  d.current_end = caller_end;
+  d.begin_call(caller_start, caller_end, "detect");
   const Vertices& start = d.current_start;
   const Vertices& end = d.current_end;
-  d.stats = DetectionStats{};
   const bool reuse = d.may_reuse() && !d.bodies.any_obstacle_stale() && d.retest.repeats_last_step(start, end);
   d.retest.forget();  // until this call completes
 
@@ -275,12 +281,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
 
 EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_start, const PositionsRef& caller_end) {
   Impl& d = *impl_;
-  const int vertex_count = d.bodies.cloth().topology.vertex_count;
-  check_positions(caller_start, vertex_count, "earliest_impact: cloth start positions");
-  check_positions(caller_end, vertex_count, "earliest_impact: cloth end positions");
-  d.current_start = caller_start;
-  d.current_end = caller_end;
-  d.stats = DetectionStats{};
+  d.begin_call(caller_start, caller_end, "earliest_impact");
   d.retest.forget();  // the hierarchies hold a window's boxes, not those of the last detect()
 
   // Each window's candidates hold the last one's (longer windows' boxes contain shorter ones'), and every pair that
