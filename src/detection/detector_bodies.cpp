@@ -49,15 +49,17 @@ int DetectorBodies::add_obstacle(const TriangleMesh& mesh) {
   return static_cast<int>(obstacles_.size());
 }
 
-Body& DetectorBodies::obstacle(int body, const char* caller) {
+std::size_t DetectorBodies::obstacle_index(int body, const char* caller) const {
   if (body < 1 || body > static_cast<int>(obstacles_.size())) {
     throw std::invalid_argument(std::string(caller) + ": no obstacle with body id " + std::to_string(body));
   }
-  return obstacles_[static_cast<std::size_t>(body - 1)];
+  return static_cast<std::size_t>(body - 1);
 }
 
+Body& DetectorBodies::obstacle(int body, const char* caller) { return obstacles_[obstacle_index(body, caller)]; }
+
 const Body& DetectorBodies::obstacle(int body, const char* caller) const {
-  return const_cast<DetectorBodies*>(this)->obstacle(body, caller);
+  return obstacles_[obstacle_index(body, caller)];
 }
 
 bool DetectorBodies::any_obstacle_stale() const {

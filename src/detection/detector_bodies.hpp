@@ -67,6 +67,9 @@ class DetectorBodies {
   void finish_step();
 
  private:
+  // The index in obstacles_ of obstacle `body`; throws std::invalid_argument naming `caller` when there is none.
+  [[nodiscard]] std::size_t obstacle_index(int body, const char* caller) const;
+
   broadphase::BvhSettings bvh_settings_;  // the cloth's (an obstacle's differs only in its volume)
   broadphase::VolumeKind obstacle_volume_;
   Body cloth_;
