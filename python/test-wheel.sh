@@ -72,10 +72,11 @@ while read -r name arrow path _; do
   grep -qxF "$name" <<< "$policy_libraries" || fail "$name comes from $path, neither the wheel nor the policy's list"
 done <<< "$ldd_output"
 
-# The pytest suite, copied beside the project's CMakeLists.txt (the version test reads the version there), run from the
-# copy against the installed package.
-mkdir -p "$tmp/suite/python"
+# The pytest suite, copied beside the project's CMakeLists.txt (the version test reads the version there) and the
+# Python examples (a test runs one), run from the copy against the installed package.
+mkdir -p "$tmp/suite/python" "$tmp/suite/examples"
 cp -r "$root/python/tests" "$tmp/suite/python/tests"
+cp -r "$root/examples/python" "$tmp/suite/examples/python"
 cp "$root/CMakeLists.txt" "$tmp/suite/"
 "$venv_python" -m pip install --quiet --disable-pip-version-check --target "$tmp/pytest" pytest
 cd "$tmp/suite"
