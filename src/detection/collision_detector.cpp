@@ -5,7 +5,8 @@
 // culls and tests them block by block as it finds them (pair_pipeline.hpp), and only the collisions are kept, within
 // the collision budget. In parts: the bodies and their hierarchies (detector_bodies.hpp), the collisions and their
 // order (collision_collector.hpp: 96 + 16 bytes per collision at the peak) and the re-test of a repeated step
-// (retest_cache.hpp); this file runs a call through them.
+// (retest_cache.hpp); this file runs a call through them. The earliest-impact search runs the same search over
+// growing windows of the step, the pipeline testing each pair only up to the earliest contact found so far.
 #include "clothcd/detection/collision_detector.hpp"
 
 #include <algorithm>
