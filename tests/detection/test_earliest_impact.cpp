@@ -270,6 +270,15 @@ TEST_CASE("earliest impact: obstacles moving by positions and rigidly", "[detect
       for (int k = 0; k < 3; ++k) step.obstacle_end(v, k) += jitter(rng);
     }
     check_against_reference(step);
+    // Every hierarchy kind bounds the window boxes: the same answer.
+    const EarliestImpact by_default = earliest_of(step, DetectorSettings{});
+    for (const clothcd::HierarchyKind kind : {clothcd::HierarchyKind::Aabb, clothcd::HierarchyKind::AabbObb}) {
+      DetectorSettings settings;
+      settings.hierarchy = kind;
+      const EarliestImpact found = earliest_of(step, settings);
+      CHECK(found.toi == by_default.toi);
+      clothcd::test::check_same({found.pair}, {by_default.pair});
+    }
   }
 
   SECTION("a rigid motion gives the answer of the same positions") {
