@@ -101,6 +101,30 @@ bool lists_option(const std::string& help, const std::string& flag) {
   return false;
 }
 
+// Runs `arguments` (a clothcd detect call on `t0`) on the first `cpus` CPUs; throws with its output when it fails.
+ChildRun run_detect_child(const std::vector<std::string>& arguments, int cpus, const std::filesystem::path& t0) {
+  ChildRun child = run_child(arguments, cpus);
+  if (child.exit_code != 0)
+    throw std::runtime_error("clothcd detect " + t0.string() + " failed (exit " + std::to_string(child.exit_code) +
+                             "): " + child.output);
+  return child;
+}
+
+// The counts and stage times of a detect report.
+DetectStages read_stages(const Json& root, const std::string& context) {
+  const Json& counts = member(root, "counts", context);
+  const Json& times = member(root, "times_ms", context);
+  DetectStages stages;
+  stages.candidates = member(counts, "candidates_vertex_face", context).get<long>() +
+                      member(counts, "candidates_edge_edge", context).get<long>();
+  stages.culled = member(counts, "culled", context).get<long>();
+  stages.refit_ms = member(times, "refit", context).get<double>();
+  stages.traversal_ms = member(times, "traversal", context).get<double>();
+  stages.culling_ms = member(times, "filters", context).get<double>();
+  stages.exact_ms = member(times, "exact", context).get<double>();
+  return stages;
+}
+
 }  // namespace
 
 std::vector<std::string> detect_mode_flags_from_help(const std::string& help, DetectMode mode) {
@@ -127,22 +151,11 @@ DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem
                      const std::vector<std::string>& flags) {
   std::vector<std::string> arguments{clothcd.string(), "detect", t0.string(), t1.string(), "--out", json_out.string()};
   arguments.insert(arguments.end(), flags.begin(), flags.end());
-  const ChildRun child = run_child(arguments, cpus);
-  if (child.exit_code != 0)
-    throw std::runtime_error("clothcd detect " + t0.string() + " failed (exit " + std::to_string(child.exit_code) +
-                             "): " + child.output);
+  const ChildRun child = run_detect_child(arguments, cpus, t0);
   const std::string context = json_out.string();
   const Json root = parse(read_text(json_out), context);
-  const Json& counts = member(root, "counts", context);
-  const Json& times = member(root, "times_ms", context);
   DetectRun run;
-  run.candidates = member(counts, "candidates_vertex_face", context).get<long>() +
-                   member(counts, "candidates_edge_edge", context).get<long>();
-  run.culled = member(counts, "culled", context).get<long>();
-  run.refit_ms = member(times, "refit", context).get<double>();
-  run.traversal_ms = member(times, "traversal", context).get<double>();
-  run.culling_ms = member(times, "filters", context).get<double>();
-  run.exact_ms = member(times, "exact", context).get<double>();
+  static_cast<DetectStages&>(run) = read_stages(root, context);
   run.peak_rss_mb = child.peak_rss_mb;
   std::vector<Entry> all = entries(root, "vertex_face", context);
   for (const Entry& e : entries(root, "edge_edge", context)) all.push_back(e);
@@ -164,25 +177,15 @@ DetectRun run_detect(const std::filesystem::path& clothcd, const std::filesystem
 
 EarliestRun run_earliest(const std::filesystem::path& clothcd, const std::filesystem::path& t0,
                          const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus) {
-  const ChildRun child = run_child(
-      {clothcd.string(), "detect", t0.string(), t1.string(), "--earliest", "--out", json_out.string()}, cpus);
-  if (child.exit_code != 0)
-    throw std::runtime_error("clothcd detect --earliest " + t0.string() + " failed (exit " +
-                             std::to_string(child.exit_code) + "): " + child.output);
+  run_detect_child({clothcd.string(), "detect", t0.string(), t1.string(), "--earliest", "--out", json_out.string()},
+                   cpus, t0);
   const std::string context = json_out.string();
   const Json root = parse(read_text(json_out), context);
-  const Json& counts = member(root, "counts", context);
-  const Json& times = member(root, "times_ms", context);
   const Json& earliest = member(root, "earliest", context);
   EarliestRun run;
+  static_cast<DetectStages&>(run) = read_stages(root, context);
   run.toi = member(earliest, "toi", context).get<double>();
   run.windows = member(earliest, "windows", context).get<int>();
-  run.candidates = member(counts, "candidates_vertex_face", context).get<long>() +
-                   member(counts, "candidates_edge_edge", context).get<long>();
-  run.refit_ms = member(times, "refit", context).get<double>();
-  run.traversal_ms = member(times, "traversal", context).get<double>();
-  run.culling_ms = member(times, "filters", context).get<double>();
-  run.exact_ms = member(times, "exact", context).get<double>();
   return run;
 }
 

@@ -16,22 +16,26 @@ namespace clothcd::bench {
 /// vertex-face {vertex, face, -1, -1}; edge-edge {a0, a1, b0, b1} with a0 < a1, b0 < b1 and (a0, a1) < (b0, b1).
 using CollisionKey = std::array<int, 4>;
 
-/// What one detect run measured.
-struct DetectRun {
+/// The counts and stage times of one `clothcd detect` run (its JSON's `counts` and `times_ms`).
+struct DetectStages {
   long candidates = 0;      ///< Vertex-face + edge-edge candidate pairs after the broad phase.
   long culled = 0;          ///< Pairs the culling stage removed.
   double refit_ms = 0;      ///< Hierarchy build or refit.
   double traversal_ms = 0;  ///< Candidate search.
   double culling_ms = 0;    ///< Culling stage.
   double exact_ms = 0;      ///< Exact CCD.
+
+  /// The whole search: hierarchy + candidates + culling + exact test.
+  [[nodiscard]] double whole_ms() const { return refit_ms + traversal_ms + culling_ms + exact_ms; }
+};
+
+/// What one detect run measured.
+struct DetectRun : DetectStages {
   double peak_rss_mb = 0;   ///< Peak resident memory of the whole `clothcd detect` process (loading included).
   std::vector<CollisionKey> collisions;  ///< Every collision, sorted.
   long conservative = 0;    ///< Collisions flagged `conservative` (undecided, reported as hits).
   double earliest_toi = 1;  ///< The smallest toi of the collisions (1 when there are none).
   std::string digest;       ///< 16 hex digits over the sorted collisions, their conservative flags and tois.
-
-  /// Whole detection: hierarchy + candidates + culling + exact test.
-  [[nodiscard]] double whole_ms() const { return refit_ms + traversal_ms + culling_ms + exact_ms; }
 };
 
 /// How the narrow phase decides the pieces of a step that interval arithmetic leaves undecided at thickness 0.
@@ -56,18 +60,10 @@ enum class DetectMode {
                                    const std::filesystem::path& t1, const std::filesystem::path& json_out, int cpus,
                                    const std::vector<std::string>& flags);
 
-/// What one `clothcd detect --earliest` run measured.
-struct EarliestRun {
-  double toi = 1;           ///< The step's earliest time of impact (1: no contact).
-  int windows = 0;          ///< Time windows searched.
-  long candidates = 0;      ///< Candidate pairs, summed over the windows.
-  double refit_ms = 0;      ///< Hierarchy refits, summed over the windows.
-  double traversal_ms = 0;  ///< Candidate search.
-  double culling_ms = 0;    ///< Culling stage.
-  double exact_ms = 0;      ///< Exact CCD.
-
-  /// The whole search, as DetectRun::whole_ms counts a detection.
-  [[nodiscard]] double whole_ms() const { return refit_ms + traversal_ms + culling_ms + exact_ms; }
+/// What one `clothcd detect --earliest` run measured (counts and times summed over its windows).
+struct EarliestRun : DetectStages {
+  double toi = 1;   ///< The step's earliest time of impact (1: no contact).
+  int windows = 0;  ///< Time windows searched.
 };
 
 /// True when `clothcd detect --help` of the program `clothcd` lists `--earliest` (older programs have no such search).

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -74,7 +75,7 @@ struct SearchScope {
   bool test = true;         // run the exact test and keep the collisions (else only count candidates and culled)
   // With `test`: when set, look for the earliest contact up to the window's end or this bound instead (an earlier
   // window's earliest toi, else infinity); PairPipeline::earliest has the answer and no collision is kept.
-  const double* earliest_bound = nullptr;
+  std::optional<double> earliest_bound;
   double window = 1.0;  // with earliest_bound: the part of the step the boxes were refitted to
 };
 
@@ -134,7 +135,7 @@ struct CollisionDetector::Impl {
     pipeline_settings.observer = scope.test && !scope.earliest_bound && observer ? &observer : nullptr;
     pipeline_settings.max_collisions = settings.max_collisions;
     pipeline_settings.cancel = &cancel;
-    if (scope.earliest_bound != nullptr) {
+    if (scope.earliest_bound) {
       pipeline_settings.earliest = true;
       pipeline_settings.window = scope.window;
       pipeline_settings.earliest_bound = *scope.earliest_bound;
@@ -151,7 +152,7 @@ struct CollisionDetector::Impl {
     }
     task_ms += traversal_stats.task_ms;
     pipeline.add_counts(found);
-    if (scope.test && scope.earliest_bound == nullptr) collected.take(pipeline, keys, settings.max_collisions);
+    if (scope.test && !scope.earliest_bound) collected.take(pipeline, keys, settings.max_collisions);
   }
 
   // Starts a call of `caller` (its name for the messages): checks the cloth positions, copies them into
@@ -229,7 +230,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
       // The last call's pairs with a moved vertex, found again on the hierarchy and positions of that call: only
       // their count is needed, to keep the candidate and culled counts those of a full search.
       auto t = Clock::now();
-      d.search(d.retest.start(), d.retest.end(), SearchScope{true, false}, replaced, task_ms);
+      d.search(d.retest.start(), d.retest.end(), SearchScope{true, false, std::nullopt, 1.0}, replaced, task_ms);
       wall_ms += milliseconds_since(t);
       d.collected.drop_moved(d.retest.moved());
     } else {
@@ -242,7 +243,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
     d.stats.refit_ms = milliseconds_since(t);
 
     t = Clock::now();
-    d.search(start, end, SearchScope{reuse, true}, found, task_ms);
+    d.search(start, end, SearchScope{reuse, true, std::nullopt, 1.0}, found, task_ms);
     wall_ms += milliseconds_since(t);
 
     t = Clock::now();
@@ -300,9 +301,8 @@ EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_sta
       d.stats.rebuilds += d.bodies.refit_window(d.current_start, d.current_end, window, d.settings.thickness);
       d.stats.refit_ms += milliseconds_since(t);
       t = Clock::now();
-      const double bound = earliest.collision.toi;
       SearchScope scope;
-      scope.earliest_bound = &bound;
+      scope.earliest_bound = earliest.collision.toi;
       scope.window = window;
       d.search(d.current_start, d.current_end, scope, found, task_ms);
       wall_ms += milliseconds_since(t);

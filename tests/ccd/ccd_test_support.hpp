@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "ccd/exact_reference.hpp"
 #include "clothcd/ccd/ccd.hpp"
 
 namespace clothcd::test {
@@ -18,6 +19,18 @@ inline ccd::CcdQuery make_query(PairKind kind, const std::array<Vector3d, 4>& st
   query.start = start;
   query.end = end;
   return query;
+}
+
+/// The exact earliest contact of the query, by the rational reference (narrowed to 2^-40).
+inline ccd::exact::ContactTimeBounds exact_contact_time_of(const ccd::CcdQuery& query) {
+  ccd::exact::RationalPoints points;
+  for (int p = 0; p < 4; ++p) {
+    for (int d = 0; d < 3; ++d) {
+      points[p][d] = mpq_class(query.start[p][d]);
+      points[p + 4][d] = mpq_class(query.end[p][d]);
+    }
+  }
+  return ccd::exact::exact_contact_time(query.kind, points);
 }
 
 /// The query with every coordinate multiplied by `scale` (a power of two keeps it exact).

@@ -9,6 +9,7 @@
 #include "ccd/pinned_segment_contact.hpp"
 
 using clothcd::PairKind;
+using clothcd::test::exact_contact_time_of;
 using clothcd::test::make_query;
 using clothcd::test::Vector3d;
 namespace ccd = clothcd::ccd;
@@ -148,18 +149,6 @@ class QueryGenerator {
 
   std::mt19937 random_;
 };
-
-// The exact earliest contact of the query, by the rational reference (narrowed to 2^-40).
-ccd::exact::ContactTimeBounds exact_contact_time_of(const ccd::CcdQuery& query) {
-  ccd::exact::RationalPoints points;
-  for (int p = 0; p < 4; ++p) {
-    for (int d = 0; d < 3; ++d) {
-      points[p][d] = mpq_class(query.start[p][d]);
-      points[p + 4][d] = mpq_class(query.end[p][d]);
-    }
-  }
-  return ccd::exact::exact_contact_time(query.kind, points);
-}
 
 struct Tally {
   int queries = 0;

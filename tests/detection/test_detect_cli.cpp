@@ -28,22 +28,30 @@ std::string read(const fs::path& path) {
   return s.str();
 }
 
+// One mesh holding a still 2 x 2 plate (y = 0, its vertices first) and a 0.5 x 0.5 cloth of kClothVertices
+// vertices 0.1 above it (its vertices last).
+constexpr Eigen::Index kClothVertices = 16;
+clothcd::TriangleMesh plate_and_cloth() {
+  const clothcd::TriangleMesh plate = clothcd::make_grid(3, 3, 2.0, 2.0);
+  const clothcd::TriangleMesh cloth = clothcd::make_grid(4, 4, 0.5, 0.5);
+  clothcd::TriangleMesh mesh;
+  mesh.vertices.resize(plate.vertex_count() + cloth.vertex_count(), 3);
+  mesh.vertices << plate.vertices, cloth.vertices;
+  mesh.vertices.bottomRows(kClothVertices).col(1).array() += 0.1;
+  mesh.faces.resize(plate.face_count() + cloth.face_count(), 3);
+  mesh.faces << plate.faces, (cloth.faces.array() + static_cast<int>(plate.vertex_count())).matrix();
+  return mesh;
+}
+
 }  // namespace
 
 TEST_CASE("clothcd detect reports a cloth falling through a plate", "[detection][cli]") {
   const fs::path dir = fs::temp_directory_path() / "clothcd_detect_cli_test";
   fs::create_directories(dir);
   // One mesh holding a still plate (y = 0) and a small cloth above it that falls through it during the step.
-  clothcd::TriangleMesh plate = clothcd::make_grid(3, 3, 2.0, 2.0);
-  clothcd::TriangleMesh cloth = clothcd::make_grid(4, 4, 0.5, 0.5);
-  clothcd::TriangleMesh t0;
-  t0.vertices.resize(plate.vertex_count() + cloth.vertex_count(), 3);
-  t0.vertices << plate.vertices, cloth.vertices;
-  t0.vertices.bottomRows(cloth.vertex_count()).col(1).array() += 0.1;
-  t0.faces.resize(plate.face_count() + cloth.face_count(), 3);
-  t0.faces << plate.faces, (cloth.faces.array() + static_cast<int>(plate.vertex_count())).matrix();
+  const clothcd::TriangleMesh t0 = plate_and_cloth();
   clothcd::TriangleMesh t1 = t0;
-  t1.vertices.bottomRows(cloth.vertex_count()).col(1).array() -= 0.2;
+  t1.vertices.bottomRows(kClothVertices).col(1).array() -= 0.2;
   clothcd::save_mesh(t0, dir / "t0.obj");
   clothcd::save_mesh(t1, dir / "t1.obj");
 
@@ -134,20 +142,13 @@ TEST_CASE("clothcd detect --earliest reports the step's earliest time of impact"
   fs::create_directories(dir);
   // A still plate (y = 0) and a cloth 0.1 above it falling by `drop`: through the plate at t = 0.1 / drop when
   // drop > 0.1, no contact otherwise.
-  clothcd::TriangleMesh plate = clothcd::make_grid(3, 3, 2.0, 2.0);
-  clothcd::TriangleMesh cloth = clothcd::make_grid(4, 4, 0.5, 0.5);
-  clothcd::TriangleMesh t0;
-  t0.vertices.resize(plate.vertex_count() + cloth.vertex_count(), 3);
-  t0.vertices << plate.vertices, cloth.vertices;
-  t0.vertices.bottomRows(cloth.vertex_count()).col(1).array() += 0.1;
-  t0.faces.resize(plate.face_count() + cloth.face_count(), 3);
-  t0.faces << plate.faces, (cloth.faces.array() + static_cast<int>(plate.vertex_count())).matrix();
+  const clothcd::TriangleMesh t0 = plate_and_cloth();
   clothcd::save_mesh(t0, dir / "t0.obj");
   const std::string frames = (dir / "t0.obj").string() + " " + (dir / "t1.obj").string();
   for (const double drop : {0.4, 0.05}) {
     INFO("drop " << drop);
     clothcd::TriangleMesh t1 = t0;
-    t1.vertices.bottomRows(cloth.vertex_count()).col(1).array() -= drop;
+    t1.vertices.bottomRows(kClothVertices).col(1).array() -= drop;
     clothcd::save_mesh(t1, dir / "t1.obj");
     REQUIRE(run("detect " + frames + " --earliest --json", dir / "out.json") == 0);
     const nlohmann::json report = nlohmann::json::parse(read(dir / "out.json"));

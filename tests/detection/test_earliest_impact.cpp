@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "ccd/exact_reference.hpp"
+#include "ccd/ccd_test_support.hpp"
 #include "clothcd/broadphase/brute_force_candidates.hpp"
 #include "clothcd/broadphase/swept_boxes.hpp"
 #include "clothcd/ccd/ccd.hpp"
@@ -99,21 +99,10 @@ void for_each_pair(const Step& step, double thickness, const Decide& decide) {
   }
 }
 
-ccd::exact::RationalPoints rational_points(const ccd::CcdQuery& q) {
-  ccd::exact::RationalPoints points;
-  for (int i = 0; i < 4; ++i) {
-    for (int d = 0; d < 3; ++d) {
-      points[i][d] = mpq_class(q.start[i][d]);
-      points[i + 4][d] = mpq_class(q.end[i][d]);
-    }
-  }
-  return points;
-}
-
 ReferenceContact brute_force_earliest(const Step& step) {
   ReferenceContact earliest;
   for_each_pair(step, 0.0, [&](const ccd::CcdQuery& q) {
-    const ccd::exact::ContactTimeBounds exact = ccd::exact::exact_contact_time(q.kind, rational_points(q));
+    const ccd::exact::ContactTimeBounds exact = clothcd::test::exact_contact_time_of(q);
     if (!exact.hit) return;
     earliest.lo = earliest.hit ? std::min(earliest.lo, exact.lo) : exact.lo;
     earliest.hi = earliest.hit ? std::min(earliest.hi, exact.hi) : exact.hi;
@@ -151,7 +140,7 @@ ccd::exact::ContactTimeBounds exact_time_of_pair(const Step& step, const clothcd
     q.start[k] = (v.body == 0 ? step.cloth.vertices : step.obstacle_start).row(v.vertex).transpose();
     q.end[k] = (v.body == 0 ? step.end : step.obstacle_end).row(v.vertex).transpose();
   }
-  return ccd::exact::exact_contact_time(q.kind, rational_points(q));
+  return clothcd::test::exact_contact_time_of(q);
 }
 
 // earliest_impact on one and on two threads against the brute-force reference: never later than the exact earliest
