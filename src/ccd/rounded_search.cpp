@@ -1,0 +1,367 @@
+// The thickness-0 fast tier in floating point with per-query error bounds (see rounded_search.hpp).
+//
+// The search: the step is subdivided, left half first (so the first hit is the earliest); a piece [t0, t1], given by
+// W at its ends, is
+//   - cleared when some coordinate of every W box (W's hull over the piece, widened by point_error) has one strict
+//     sign, or when that holds for both halves of the piece (checked before the tests below, which could then only
+//     clear it), or when D's Bernstein coefficients on the piece have one certain sign (no coplanarity), or, from depth
+//     4 on (above it a piece only splits), when in some axis projection every triangle of W has 2D cross products of
+//     both certain signs over the whole piece (the origin is outside every triangle, so outside conv W);
+//   - a proven hit when D certainly changes sign over the piece (a coplanar instant exists) and, in some projection,
+//     one triangle of W has three 2D cross products of the same certain sign over the piece (the origin strictly
+//     inside a non-degenerate projected triangle, which at the coplanar instant puts it inside conv W); the time of
+//     impact, D's first root in the piece, is then bracketed by de Casteljau halving to within kToiTolerance, and a
+//     bracket that cannot be proven that tight leaves the piece undecided.
+// A 2D cross product W_a x W_b is quadratic in t; its sign over a piece is certain when its three Bernstein
+// coefficients there have one sign beyond their error bound (at least as tight as a product of the W boxes).
+//
+// Error bounds. u = 2^-53; M = the largest magnitude of the query's rounded coordinate differences (W's points and
+// D's edge vectors at both ends), 2^-300 <= M <= 2^101, so every product below is far above the underflow threshold:
+// the absolute errors of an underflowing product or sum (at most 2^-1075 each) vanish in the slack of the constants.
+//   - A rounded difference x_i - x_j is within 1.01 u of its magnitude (one rounding; exact when subnormal), and its
+//     sign is exact.
+//   - point_at: (1 - t) W(0) + t W(1), 1 - t exact for the dyadic times used: the ends' errors (1.01 u M) plus three
+//     roundings of at most u M each: below 4.1 u M; point_error = 8 u M. Rounded points are at most M (1 + 4u).
+//   - cross_coefficients from points within e = 8 u M of W, magnitudes at most P = M (1 + 2^-40): each product moves by
+//     at most 2 P e, two products' worth per coefficient (the middle one halves four): 4 P e = 32 u M^2; the middle
+//     coefficient's roundings (four products, three sums, an exact halving) 6 u P^2: below 39 u M^2;
+//     cross_error = 64 u M^2.
+//   - D's tripled coefficients (four cross products shared by six dot products, as bernstein_of_d): the inputs' errors
+//     move each determinant by at most 9 x 2 M^2 x 1.01 u M, three determinants' worth per coefficient (55 u M^3); the
+//     roundings of a cross product component 4 u M^2, of the mixed sum of two 12 u M^2, of the dot products and sums
+//     at most 115 u M^3: below 170 u M^3; d.error = 256 u M^3.
+//   - halve: each new coefficient is an average of two (up to three levels deep), each average adding at most u B,
+//     where B bounds every coefficient's magnitude on every piece: the exact ones lie in the hull of the step's
+//     (de Casteljau is a convex combination), so B = (max |d.b| + 2 d.error) (1 + 2^-40) holds for the first 2^11
+//     halvings; halving_error = 4 u B.
+// Tests that compare rounded values with their exact rational values: tests/ccd/test_rounded_search.cpp.
+#include "ccd/rounded_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clothcd::ccd::detail {
+
+namespace {
+
+using Points = WPoints;
+
+constexpr double kUnitRoundoff = 0x1p-53;
+// Coordinates and differences the bounds above hold for.
+constexpr double kMaxCoordinate = 0x1p100;
+constexpr double kMinDifference = 0x1p-300;
+// Thickness 0: pieces down to 2^-4 of the step before the exact tiers. Of the public handcrafted queries that the
+// intervals decide at all, 91% (VF) / 76% (EE) need no subdivision, all but 2 / 13 stay within depth 4 and none goes
+// deeper than 8: what is still undecided at depth 4 is mostly an exact touch or a miss by a rounding error, which no
+// subdivision decides, so deeper pieces mostly delay the exact tiers.
+constexpr int kMaxDepth = 4;
+// Deciding exactly: pieces go on splitting below kMaxDepth while the query has examined fewer than kDeepPieceBudget
+// pieces below kMaxDepth. A piece that misses or touches by far more than a rounding error is decided there at a few
+// tests per level, instead of by the exact tiers (about 100k instructions a query); what is left (an exact touch, a
+// miss by a rounding error, coplanar motion) exhausts the budget quickly and goes to them.
+constexpr int kDeepPieceBudget = 8;
+// A conservative hit's time of impact is tightened by at most kToiBisections halvings of its piece.
+constexpr int kToiBisections = 24;
+
+int certain_sign(double value, double error) {
+  return value > error ? 1 : (value < -error ? -1 : 0);
+}
+
+int common_strict_sign(const RoundedCubic& cubic) {
+  const int s = certain_sign(cubic.b[0], cubic.error);
+  for (int i = 1; i < 4; ++i)
+    if (certain_sign(cubic.b[i], cubic.error) != s) return 0;
+  return s;
+}
+
+// True when the boxes of W over the piece between the points p and q, widened by `error`, exclude the origin: some
+// coordinate has one strict sign in every box.
+bool boxes_exclude_origin(const Points& p, const Points& q, double error) {
+  bool excluded = false;
+  for (int d = 0; d < 3; ++d) {
+    bool all_above = true;
+    bool all_below = true;
+    for (int m = 0; m < 4; ++m) {
+      all_above &= std::min(p[d][m], q[d][m]) > error;
+      all_below &= std::max(p[d][m], q[d][m]) < -error;
+    }
+    excluded |= all_above | all_below;
+  }
+  return excluded;
+}
+
+enum class TriangleVerdict { Outside, Inside, Unknown };
+
+// `cross[a][b]`: the certain sign of W_a x W_b over the piece (0 when uncertain).
+TriangleVerdict classify_triangle(const int (&cross)[4][4], int a, int b, int c) {
+  const int s[3] = {cross[a][b], cross[b][c], cross[c][a]};
+  const bool positive = s[0] > 0 || s[1] > 0 || s[2] > 0;
+  const bool negative = s[0] < 0 || s[1] < 0 || s[2] < 0;
+  if (positive && negative) return TriangleVerdict::Outside;
+  if (s[0] != 0 && s[0] == s[1] && s[1] == s[2]) return TriangleVerdict::Inside;
+  return TriangleVerdict::Unknown;
+}
+
+// Clear when in some projection the origin is certainly outside every triangle of W over the whole piece between p
+// and q; Hit when D certainly changes sign over the piece and in some projection the origin is certainly strictly
+// inside one triangle (then no projection can exclude it: at the coplanar instant the origin is in conv W), so both
+// answers end the scan early; else Undecided.
+SearchOutcome classify_projections(const RoundedQuery& query, const Points& p, const Points& q, bool d_changes_sign) {
+  const int count = query.count;
+  bool one_inside = false;
+  for (int k = 0; k < 3; ++k) {
+    int cross[4][4] = {};
+    for (int a = 0; a < count; ++a) {
+      for (int b = a + 1; b < count; ++b) {
+        const std::array<double, 3> c = cross_coefficients(p, q, a, b, k);
+        const int s0 = certain_sign(c[0], query.cross_error);
+        const int s = s0 == certain_sign(c[1], query.cross_error) && s0 == certain_sign(c[2], query.cross_error) ? s0 : 0;
+        cross[a][b] = s;
+        cross[b][a] = -s;
+      }
+    }
+    bool all_outside = true;
+    for (int a = 0; a < count; ++a) {
+      for (int b = a + 1; b < count; ++b) {
+        for (int c = b + 1; c < count; ++c) {
+          const TriangleVerdict t = classify_triangle(cross, a, b, c);
+          all_outside = all_outside && t == TriangleVerdict::Outside;
+          one_inside = one_inside || t == TriangleVerdict::Inside;
+        }
+      }
+    }
+    if (all_outside) return SearchOutcome::Clear;
+    if (one_inside && d_changes_sign) return SearchOutcome::Hit;
+  }
+  return SearchOutcome::Undecided;
+}
+
+// Lower bound of the first root of D in [t0, t1]: the start of the first sub-piece where D is not certainly non-zero.
+// `tight` when the bound is proven within kToiTolerance of the first root: D has certain opposite signs at the ends
+// of the final sub-piece [lo, t1] with t1 - lo <= kToiTolerance (and none of its roots lies before lo).
+struct RootBound {
+  double lo = 0.0;
+  bool tight = false;
+};
+
+RootBound first_root_lower_bound(double t0, double t1, RoundedCubic d, double halving_error) {
+  const auto brackets_root = [&d] {
+    const int s = certain_sign(d.b[0], d.error);
+    return s != 0 && certain_sign(d.b[3], d.error) == -s;
+  };
+  for (int i = 0; i < kToiBisections; ++i) {
+    if (t1 - t0 <= kToiTolerance && brackets_root()) return {t0, true};
+    const double mid = 0.5 * (t0 + t1);
+    if (!(mid > t0 && mid < t1)) break;
+    RoundedCubic left, right;
+    halve(d, halving_error, left, right);
+    if (common_strict_sign(left) != 0) {
+      t0 = mid;
+      d = right;
+    } else {
+      t1 = mid;
+      d = left;
+    }
+  }
+  return {t0, t1 - t0 <= kToiTolerance && brackets_root()};
+}
+
+// The two halves of a piece split at `mid`: W there, and whether each half's boxes exclude the origin.
+struct Halves {
+  Points middle;
+  bool left_clear = false, right_clear = false;
+};
+
+void split_piece(const RoundedQuery& query, double mid, const Points& e0, const Points& e1, Halves& halves) {
+  point_at(query, mid, halves.middle);
+  halves.left_clear = boxes_exclude_origin(e0, halves.middle, query.point_error);
+  halves.right_clear = boxes_exclude_origin(halves.middle, e1, query.point_error);
+}
+
+struct Search {
+  const RoundedQuery& query;
+  int deep_pieces_left = 0;  // pieces below kMaxDepth this query may still examine
+  double toi = 1.0;
+  double until = 1.0;  // pieces starting after this time are not examined
+};
+
+// Decides the piece [t0, t1] with ends e0 and e1, whose W boxes do not exclude the origin and on which D is `d`
+// (the step's, halved below it).
+SearchOutcome search_piece(Search& search, double t0, double t1, const Points& e0, const Points& e1, int depth,
+                           const RoundedCubic& d) {
+  if (t0 > search.until) return SearchOutcome::Clear;
+  const RoundedQuery& query = search.query;
+  const double mid = 0.5 * (t0 + t1);
+  if (depth > kMaxDepth && common_strict_sign(d) == 0 && --search.deep_pieces_left < 0)
+    return SearchOutcome::Undecided;
+  const bool can_split = (depth < kMaxDepth || search.deep_pieces_left > 0) && mid > t0 && mid < t1;
+  // When both halves' boxes exclude the origin there is no contact in the piece, so the tests below could not find a
+  // hit: they would clear the piece or split it into these halves, which clear at once. Either way the piece is clear,
+  // without their cost. The whole step's own tests almost never decide, so there the halves come first; deeper, after
+  // the Bernstein test, which decides more pieces and needs no middle positions.
+  Halves halves;
+  const bool halves_first = depth == 0;
+  if (can_split && halves_first) {
+    split_piece(query, mid, e0, e1, halves);
+    if (halves.left_clear && halves.right_clear) return SearchOutcome::Clear;
+  }
+  if (common_strict_sign(d) != 0) return SearchOutcome::Clear;
+  if (can_split && !halves_first) {
+    split_piece(query, mid, e0, e1, halves);
+    if (halves.left_clear && halves.right_clear) return SearchOutcome::Clear;
+  }
+  const int sign_start = certain_sign(d.b[0], d.error);
+  const int sign_end = certain_sign(d.b[3], d.error);
+  // Above kMaxDepth the projection tests rarely decide what the halves would not, so a piece that can split only
+  // splits (its halves cover it, earliest first).
+  const SearchOutcome verdict = depth < kMaxDepth && can_split
+                                    ? SearchOutcome::Undecided
+                                    : classify_projections(query, e0, e1, sign_start != 0 && sign_end == -sign_start);
+  if (verdict == SearchOutcome::Clear) return SearchOutcome::Clear;
+  if (verdict == SearchOutcome::Hit) {
+    // Every earlier piece was cleared, and every root of D in this one is a contact.
+    const RootBound bound = first_root_lower_bound(t0, t1, d, query.halving_error);
+    search.toi = bound.lo;
+    return bound.tight ? SearchOutcome::Hit : SearchOutcome::Undecided;
+  }
+  if (!can_split) {
+    // Every earlier piece was cleared, and a contact needs D = 0: none before D's first possible root in this piece.
+    search.toi = first_root_lower_bound(t0, t1, d, query.halving_error).lo;
+    return SearchOutcome::Undecided;
+  }
+  RoundedCubic left_d, right_d;
+  halve(d, query.halving_error, left_d, right_d);
+  if (!halves.left_clear) {
+    const SearchOutcome left = search_piece(search, t0, mid, e0, halves.middle, depth + 1, left_d);
+    if (left != SearchOutcome::Clear) return left;
+  }
+  if (halves.right_clear) return SearchOutcome::Clear;
+  return search_piece(search, mid, t1, halves.middle, e1, depth + 1, right_d);
+}
+
+using Vector = std::array<double, 3>;
+
+Vector difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Vector cross(const Vector& a, const Vector& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vector sum(const Vector& a, const Vector& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+double dot(const Vector& a, const Vector& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double largest_magnitude(const Vector& v) {
+  return std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+}
+
+}  // namespace
+
+std::optional<RoundedQuery> rounded_query(const CcdQuery& query) {
+  for (int i = 0; i < 4; ++i)
+    if (!(query.start[i].cwiseAbs().maxCoeff() <= kMaxCoordinate) ||
+        !(query.end[i].cwiseAbs().maxCoeff() <= kMaxCoordinate))
+      return std::nullopt;
+  RoundedQuery rounded;
+  const bool vertex_face = query.kind == PairKind::VertexFace;
+  rounded.count = vertex_face ? 3 : 4;
+  const auto fill_points = [&](const std::array<Eigen::Vector3d, 4>& x, Points& w) {
+    for (int d = 0; d < 3; ++d) {
+      if (vertex_face) {
+        w[d] = {x[0][d] - x[1][d], x[0][d] - x[2][d], x[0][d] - x[3][d], x[0][d] - x[1][d]};
+      } else {
+        w[d] = {x[0][d] - x[2][d], x[0][d] - x[3][d], x[1][d] - x[2][d], x[1][d] - x[3][d]};
+      }
+    }
+  };
+  fill_points(query.start, rounded.start);
+  fill_points(query.end, rounded.end);
+  // D's edge vectors from x0 at both ends.
+  std::array<Vector, 3> e0, e1;
+  for (int i = 0; i < 3; ++i) {
+    e0[i] = difference(query.start[i + 1], query.start[0]);
+    e1[i] = difference(query.end[i + 1], query.end[0]);
+  }
+  double m = 0.0;
+  for (int d = 0; d < 3; ++d)
+    for (int i = 0; i < 4; ++i) m = std::max({m, std::abs(rounded.start[d][i]), std::abs(rounded.end[d][i])});
+  for (int i = 0; i < 3; ++i) m = std::max({m, largest_magnitude(e0[i]), largest_magnitude(e1[i])});
+  if (!(m >= kMinDifference)) return std::nullopt;
+  rounded.point_error = 8.0 * kUnitRoundoff * m;
+  rounded.cross_error = 64.0 * kUnitRoundoff * m * m;
+  // D is trilinear in its edge vectors (a, b, c), so its tripled Bernstein coefficients are a0.(b0 x c0) times 3,
+  // a1.(b0 x c0) + a0.(b1 x c0 + b0 x c1), and so on: four cross products shared by six dot products.
+  const Vector bc00 = cross(e0[1], e0[2]), bc11 = cross(e1[1], e1[2]);
+  const Vector bc_mixed = sum(cross(e1[1], e0[2]), cross(e0[1], e1[2]));
+  rounded.d.b = {3.0 * dot(e0[0], bc00), dot(e1[0], bc00) + dot(e0[0], bc_mixed),
+                 dot(e1[0], bc_mixed) + dot(e0[0], bc11), 3.0 * dot(e1[0], bc11)};
+  rounded.d.error = 256.0 * kUnitRoundoff * m * m * m;
+  double largest = 0.0;
+  for (const double b : rounded.d.b) largest = std::max(largest, std::abs(b));
+  rounded.halving_error = 4.0 * kUnitRoundoff * (largest + 2.0 * rounded.d.error) * (1.0 + 0x1p-40);
+  return rounded;
+}
+
+void point_at(const RoundedQuery& query, double t, Points& w) {
+  const double s = 1.0 - t;
+  for (int d = 0; d < 3; ++d)
+    for (int m = 0; m < 4; ++m) w[d][m] = s * query.start[d][m] + t * query.end[d][m];
+}
+
+std::array<double, 3> cross_coefficients(const Points& p, const Points& q, int a, int b, int k) {
+  const int u = (k + 1) % 3;
+  const int v = (k + 2) % 3;
+  return {p[u][a] * p[v][b] - p[v][a] * p[u][b],
+          0.5 * ((p[u][a] * q[v][b] + q[u][a] * p[v][b]) - (p[v][a] * q[u][b] + q[v][a] * p[u][b])),
+          q[u][a] * q[v][b] - q[v][a] * q[u][b]};
+}
+
+void halve(const RoundedCubic& cubic, double added_error, RoundedCubic& left, RoundedCubic& right) {
+  const std::array<double, 4>& b = cubic.b;
+  const double b01 = 0.5 * (b[0] + b[1]), b12 = 0.5 * (b[1] + b[2]), b23 = 0.5 * (b[2] + b[3]);
+  const double b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
+  const double b0123 = 0.5 * (b012 + b123);
+  const double error = cubic.error + added_error;
+  left = {{b[0], b01, b012, b0123}, error};
+  right = {{b0123, b123, b23, b[3]}, error};
+}
+
+SearchAnswer search_step(const RoundedQuery& query, bool deep, double until) {
+  Search search{query, deep ? kDeepPieceBudget : 0, 1.0, until};
+  if (boxes_exclude_origin(query.start, query.end, query.point_error)) return {};
+  const SearchOutcome outcome = search_piece(search, 0.0, 1.0, query.start, query.end, 0, query.d);
+  return {outcome, outcome == SearchOutcome::Clear ? 1.0 : search.toi};
+}
+
+bool possible_touch_at(const RoundedQuery& query, int end) {
+  const double d_at_end = end == 0 ? query.d.b[0] : query.d.b[3];
+  if (certain_sign(d_at_end, query.d.error) != 0) return false;
+  const Points& w = end == 0 ? query.start : query.end;
+  // The end points' signs are exact: no margin.
+  return !boxes_exclude_origin(w, w, 0.0) &&
+         classify_projections(query, w, w, false) != SearchOutcome::Clear;
+}
+
+bool has_zero_point(const RoundedQuery& query, int end) {
+  const Points& w = end == 0 ? query.start : query.end;
+  for (int m = 0; m < query.count; ++m)
+    if (w[0][m] == 0.0 && w[1][m] == 0.0 && w[2][m] == 0.0) return true;
+  return false;
+}
+
+bool outside_before_end(const RoundedQuery& query) {
+  for (int d = 0; d < 3; ++d) {
+    bool above = true;
+    bool below = true;
+    for (int m = 0; m < query.count; ++m) {
+      above = above && query.start[d][m] > 0.0 && query.end[d][m] >= 0.0;
+      below = below && query.start[d][m] < 0.0 && query.end[d][m] <= 0.0;
+    }
+    if (above || below) return true;
+  }
+  return false;
+}
+
+}  // namespace clothcd::ccd::detail
