@@ -15,25 +15,28 @@
 // A 2D cross product W_a x W_b is quadratic in t; its sign over a piece is certain when its three Bernstein
 // coefficients there have one sign beyond their error bound (at least as tight as a product of the W boxes).
 //
-// Error bounds. u = 2^-53; M = the largest magnitude of the query's rounded coordinate differences (W's points and
-// D's edge vectors at both ends), 2^-300 <= M <= 2^101, so every product below is far above the underflow threshold:
-// the absolute errors of an underflowing product or sum (at most 2^-1075 each) vanish in the slack of the constants.
+// Error bounds, u = 2^-53, coordinates at most 2^100 in magnitude (no overflow). Underflow: a rounded product or
+// halving may err by 2^-1075 in absolute terms, which the absolute terms below cover.
 //   - A rounded difference x_i - x_j is within 1.01 u of its magnitude (one rounding; exact when subnormal), and its
-//     sign is exact.
-//   - point_at: (1 - t) W(0) + t W(1), 1 - t exact for the dyadic times used: the ends' errors (1.01 u M) plus three
-//     roundings of at most u M each: below 4.1 u M; point_error = 8 u M. Rounded points are at most M (1 + 4u).
-//   - cross_coefficients from points within e = 8 u M of W, magnitudes at most P = M (1 + 2^-40): each product moves by
-//     at most 2 P e, two products' worth per coefficient (the middle one halves four): 4 P e = 32 u M^2; the middle
-//     coefficient's roundings (four products, three sums, an exact halving) 6 u P^2: below 39 u M^2;
-//     cross_error = 64 u M^2.
-//   - D's tripled coefficients (four cross products shared by six dot products, as bernstein_of_d): the inputs' errors
-//     move each determinant by at most 9 x 2 M^2 x 1.01 u M, three determinants' worth per coefficient (55 u M^3); the
-//     roundings of a cross product component 4 u M^2, of the mixed sum of two 12 u M^2, of the dot products and sums
-//     at most 115 u M^3: below 170 u M^3; d.error = 256 u M^3.
-//   - halve: each new coefficient is an average of two (up to three levels deep), each average adding at most u B,
-//     where B bounds every coefficient's magnitude on every piece: the exact ones lie in the hull of the step's
-//     (de Casteljau is a convex combination), so B = (max |d.b| + 2 d.error) (1 + 2^-40) holds for the first 2^11
-//     halvings; halving_error = 4 u B.
+//     sign is exact. Per coordinate of W's point m, W_max = the larger magnitude of its two rounded ends.
+//   - point_at: (1 - t) W(0) + t W(1), 1 - t exact for the dyadic times used: the ends' errors (1.01 u W_max) plus
+//     three roundings of at most u W_max each (and underflow): point_error = 4 u W_max + 2^-1022. Both the exact and
+//     the rounded W(t) are at most magnitude = W_max (1 + 2^-40) + 2^-1022.
+//   - cross_coefficients: with x, y, z, w the coordinates of x y - z w, inputs within their point_error e and at most
+//     their magnitude P: each product moves by at most P_x e_y + P_y e_x (the middle coefficient halves four products,
+//     two products' worth), so 8 u (P_x P_y + P_z P_w) plus at most 4 x 2^102 x 2^-1022 from the absolute terms; the
+//     middle coefficient's roundings (four products, three sums, an exact halving) 3 u (P_x P_y + P_z P_w):
+//     cross_error = 16 u (P_x P_y + P_z P_w) + 2^-900.
+//   - D's tripled coefficients (four cross products shared by six dot products): with A, B, C the larger magnitudes of
+//     the edge vectors' rounded components at both ends and P3 = A . (|B| x |C|) (x: the cross product with every
+//     term's magnitude added), each determinant is at most P3. The inputs' errors move a determinant by at most
+//     3.04 u P3, three determinants' worth per coefficient (9.2 u P3); the roundings of a cross product component are
+//     at most 2 u of its magnitude bound, of the mixed sum of two 6 u, of a coefficient's dot products and sums at most
+//     20 u P3: d.error = 64 u P3 + 2^-1000.
+//   - halve: each new coefficient is an average of two (up to three levels deep), each average adding at most u B
+//     (and an underflow), where B bounds every coefficient's magnitude on every piece: the exact ones lie in the hull
+//     of the step's (de Casteljau is a convex combination), so B = (max |d.b| + 2 d.error) (1 + 2^-40) holds for the
+//     first 2^11 halvings; halving_error = 4 u B + 2^-1070.
 // Tests that compare rounded values with their exact rational values: tests/ccd/test_rounded_search.cpp.
 #include "ccd/rounded_search.hpp"
 
@@ -47,9 +50,8 @@ namespace {
 using Points = WPoints;
 
 constexpr double kUnitRoundoff = 0x1p-53;
-// Coordinates and differences the bounds above hold for.
+// Coordinates the bounds above hold for.
 constexpr double kMaxCoordinate = 0x1p100;
-constexpr double kMinDifference = 0x1p-300;
 // Thickness 0: pieces down to 2^-4 of the step before the exact tiers. Of the public handcrafted queries that the
 // intervals decide at all, 91% (VF) / 76% (EE) need no subdivision, all but 2 / 13 stay within depth 4 and none goes
 // deeper than 8: what is still undecided at depth 4 is mostly an exact touch or a miss by a rounding error, which no
@@ -76,14 +78,14 @@ int common_strict_sign(const RoundedCubic& cubic) {
 
 // True when the boxes of W over the piece between the points p and q, widened by `error`, exclude the origin: some
 // coordinate has one strict sign in every box.
-bool boxes_exclude_origin(const Points& p, const Points& q, double error) {
+bool boxes_exclude_origin(const Points& p, const Points& q, const Points& error) {
   bool excluded = false;
   for (int d = 0; d < 3; ++d) {
     bool all_above = true;
     bool all_below = true;
     for (int m = 0; m < 4; ++m) {
-      all_above &= std::min(p[d][m], q[d][m]) > error;
-      all_below &= std::max(p[d][m], q[d][m]) < -error;
+      all_above &= std::min(p[d][m], q[d][m]) > error[d][m];
+      all_below &= std::max(p[d][m], q[d][m]) < -error[d][m];
     }
     excluded |= all_above | all_below;
   }
@@ -114,8 +116,10 @@ SearchOutcome classify_projections(const RoundedQuery& query, const Points& p, c
     for (int a = 0; a < count; ++a) {
       for (int b = a + 1; b < count; ++b) {
         const std::array<double, 3> c = cross_coefficients(p, q, a, b, k);
-        const int s0 = certain_sign(c[0], query.cross_error);
-        const int s = s0 == certain_sign(c[1], query.cross_error) && s0 == certain_sign(c[2], query.cross_error) ? s0 : 0;
+        const double error = cross_error(query, a, b, k);
+        const int s0 = certain_sign(c[0], error);
+        const bool one_sign = s0 == certain_sign(c[1], error) && s0 == certain_sign(c[2], error);
+        const int s = one_sign ? s0 : 0;
         cross[a][b] = s;
         cross[b][a] = -s;
       }
@@ -247,14 +251,20 @@ Vector difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 Vector cross(const Vector& a, const Vector& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
+// The cross product's terms' magnitudes added, of vectors of magnitudes.
+Vector magnitude_cross(const Vector& a, const Vector& b) {
+  return {a[1] * b[2] + a[2] * b[1], a[2] * b[0] + a[0] * b[2], a[0] * b[1] + a[1] * b[0]};
+}
 Vector sum(const Vector& a, const Vector& b) {
   return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
 }
 double dot(const Vector& a, const Vector& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
-double largest_magnitude(const Vector& v) {
-  return std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+// Per component, the larger magnitude of a and b.
+Vector larger_magnitudes(const Vector& a, const Vector& b) {
+  return {std::max(std::abs(a[0]), std::abs(b[0])), std::max(std::abs(a[1]), std::abs(b[1])),
+          std::max(std::abs(a[2]), std::abs(b[2]))};
 }
 
 }  // namespace
@@ -284,23 +294,25 @@ std::optional<RoundedQuery> rounded_query(const CcdQuery& query) {
     e0[i] = difference(query.start[i + 1], query.start[0]);
     e1[i] = difference(query.end[i + 1], query.end[0]);
   }
-  double m = 0.0;
-  for (int d = 0; d < 3; ++d)
-    for (int i = 0; i < 4; ++i) m = std::max({m, std::abs(rounded.start[d][i]), std::abs(rounded.end[d][i])});
-  for (int i = 0; i < 3; ++i) m = std::max({m, largest_magnitude(e0[i]), largest_magnitude(e1[i])});
-  if (!(m >= kMinDifference)) return std::nullopt;
-  rounded.point_error = 8.0 * kUnitRoundoff * m;
-  rounded.cross_error = 64.0 * kUnitRoundoff * m * m;
+  for (int d = 0; d < 3; ++d) {
+    for (int m = 0; m < 4; ++m) {
+      const double w_max = std::max(std::abs(rounded.start[d][m]), std::abs(rounded.end[d][m]));
+      rounded.point_error[d][m] = 4.0 * kUnitRoundoff * w_max + 0x1p-1022;
+      rounded.magnitude[d][m] = w_max * (1.0 + 0x1p-40) + 0x1p-1022;
+    }
+  }
   // D is trilinear in its edge vectors (a, b, c), so its tripled Bernstein coefficients are a0.(b0 x c0) times 3,
   // a1.(b0 x c0) + a0.(b1 x c0 + b0 x c1), and so on: four cross products shared by six dot products.
   const Vector bc00 = cross(e0[1], e0[2]), bc11 = cross(e1[1], e1[2]);
   const Vector bc_mixed = sum(cross(e1[1], e0[2]), cross(e0[1], e1[2]));
   rounded.d.b = {3.0 * dot(e0[0], bc00), dot(e1[0], bc00) + dot(e0[0], bc_mixed),
                  dot(e1[0], bc_mixed) + dot(e0[0], bc11), 3.0 * dot(e1[0], bc11)};
-  rounded.d.error = 256.0 * kUnitRoundoff * m * m * m;
+  const Vector a = larger_magnitudes(e0[0], e1[0]), b = larger_magnitudes(e0[1], e1[1]);
+  const double p3 = dot(a, magnitude_cross(b, larger_magnitudes(e0[2], e1[2])));
+  rounded.d.error = 64.0 * kUnitRoundoff * p3 + 0x1p-1000;
   double largest = 0.0;
   for (const double b : rounded.d.b) largest = std::max(largest, std::abs(b));
-  rounded.halving_error = 4.0 * kUnitRoundoff * (largest + 2.0 * rounded.d.error) * (1.0 + 0x1p-40);
+  rounded.halving_error = 4.0 * kUnitRoundoff * (largest + 2.0 * rounded.d.error) * (1.0 + 0x1p-40) + 0x1p-1070;
   return rounded;
 }
 
@@ -316,6 +328,13 @@ std::array<double, 3> cross_coefficients(const Points& p, const Points& q, int a
   return {p[u][a] * p[v][b] - p[v][a] * p[u][b],
           0.5 * ((p[u][a] * q[v][b] + q[u][a] * p[v][b]) - (p[v][a] * q[u][b] + q[v][a] * p[u][b])),
           q[u][a] * q[v][b] - q[v][a] * q[u][b]};
+}
+
+double cross_error(const RoundedQuery& query, int a, int b, int k) {
+  const int u = (k + 1) % 3;
+  const int v = (k + 2) % 3;
+  const Points& p = query.magnitude;
+  return 16.0 * kUnitRoundoff * (p[u][a] * p[v][b] + p[v][a] * p[u][b]) + 0x1p-900;
 }
 
 void halve(const RoundedCubic& cubic, double added_error, RoundedCubic& left, RoundedCubic& right) {
@@ -340,7 +359,8 @@ bool possible_touch_at(const RoundedQuery& query, int end) {
   if (certain_sign(d_at_end, query.d.error) != 0) return false;
   const Points& w = end == 0 ? query.start : query.end;
   // The end points' signs are exact: no margin.
-  return !boxes_exclude_origin(w, w, 0.0) &&
+  static constexpr Points kExact{};
+  return !boxes_exclude_origin(w, w, kExact) &&
          classify_projections(query, w, w, false) != SearchOutcome::Clear;
 }
 

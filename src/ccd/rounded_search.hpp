@@ -1,8 +1,8 @@
 #pragma once
 // Private: the fast tier of the thickness-0 CCD (continuous_collision.cpp), in plain floating point. Every rounded
-// value of a query carries an error bound fixed once per query from the magnitude M of its coordinate differences (a
-// static filter): a sign is certain when the rounded value exceeds its bound, so no interval bounds are carried
-// through the operations.
+// value carries an error bound from the magnitudes of the terms it is made of, fixed once per query for W's points
+// and D (a semi-static filter): a sign is certain when the rounded value exceeds its bound, so no interval bounds are
+// carried through the operations.
 #include <array>
 #include <optional>
 
@@ -31,23 +31,26 @@ struct RoundedQuery {
   int count = 0;               ///< 3 points (vertex-face) or 4 (edge-edge).
   WPoints start{};             ///< W(0), each coordinate one rounded difference (its sign exact).
   WPoints end{};               ///< W(1), likewise.
-  double point_error = 0.0;    ///< Bound on |W(t) - point_at(t)| per coordinate, for every t in [0, 1].
-  double cross_error = 0.0;    ///< Bound on the error of cross_coefficients' values.
+  WPoints point_error{};       ///< Bound on |W(t) - point_at(t)| per coordinate, for every t in [0, 1].
+  WPoints magnitude{};         ///< Bound on |W(t)| and |point_at(t)| per coordinate, for every t in [0, 1].
   double halving_error = 0.0;  ///< Bound on the error one de Casteljau halving adds to a RoundedCubic.
   RoundedCubic d;              ///< D on the whole step.
 };
 
-/// The query as a RoundedQuery; nullopt when its coordinate differences are all below 2^-300 in magnitude (or any
-/// coordinate is beyond 2^100), where the bounds would not hold (products could underflow): the exact tiers decide.
+/// The query as a RoundedQuery; nullopt when a coordinate is beyond 2^100 in magnitude (products could overflow): the
+/// exact tiers decide.
 [[nodiscard]] std::optional<RoundedQuery> rounded_query(const CcdQuery& query);
 
 /// W at time t in [0, 1], rounded: (1 - t) W(0) + t W(1), within point_error of the exact W(t).
 void point_at(const RoundedQuery& query, double t, WPoints& w);
 
 /// The Bernstein coefficients on a piece of the 2D cross product W_a x W_b in the projection dropping axis k, from W
-/// at the piece's ends (as point_at gives it): each within cross_error of the exact coefficients.
+/// at the piece's ends (as point_at gives it): each within cross_error(query, a, b, k) of the exact coefficients.
 [[nodiscard]] std::array<double, 3> cross_coefficients(const WPoints& piece_start, const WPoints& piece_end, int a,
                                                        int b, int k);
+
+/// Bound on the error of cross_coefficients(..., a, b, k) on any piece of the query's step.
+[[nodiscard]] double cross_error(const RoundedQuery& query, int a, int b, int k);
 
 /// The two halves of `cubic`'s piece by de Casteljau halving, each error grown by `added_error`.
 void halve(const RoundedCubic& cubic, double added_error, RoundedCubic& left, RoundedCubic& right);
