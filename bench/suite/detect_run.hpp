@@ -38,7 +38,7 @@ struct DetectRun : DetectStages {
   std::string digest;       ///< 16 hex digits over the sorted collisions, their conservative flags and tois.
 };
 
-/// How the narrow phase decides the pieces of a step that interval arithmetic leaves undecided at thickness 0.
+/// How the narrow phase decides the pieces of a step that the floating-point fast tier leaves undecided at thickness 0.
 enum class DetectMode {
   Approximate,  ///< Reported as `conservative` hits (the detector's default before exact decisions were).
   Exact,        ///< Decided exactly: every reported collision is a real one.

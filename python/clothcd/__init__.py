@@ -118,7 +118,7 @@ def ccd(queries, kind: str = "vf", *, filter: str = "combined", thickness: float
     """Continuous collision detection on (N, 8, 3) queries (the four points at t=0, then at t=1; vertex-face: the
     vertex then the triangle, edge-edge: edge a then edge b). Returns (hit (N,) bool, toi (N,), culled (N,) bool):
     `culled` pairs were removed by `filter` ("none", "nonpenetration", "projection", "combined"). exact=False is the
-    approximate mode: queries interval arithmetic leaves undecided count as hits (toi a lower bound)."""
+    approximate mode: queries the floating-point fast tier leaves undecided count as hits (toi a lower bound)."""
     hit, toi, culled = _clothcd._ccd(np.ascontiguousarray(queries, dtype=np.float64), kind, filter, thickness, exact)
     return hit.astype(bool), toi, culled.astype(bool)
 

@@ -120,7 +120,7 @@ CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {
   return result;
 }
 
-// Thickness 0. Queries the intervals leave undecided are reported as conservative hits unless decide_exactly; those
+// Thickness 0. Queries the fast tier leaves undecided are reported as conservative hits unless decide_exactly; those
 // too large for the fast path always go to the exact tiers. A query that certainly has no contact until `until` is
 // separated (see continuous_collision_until).
 CcdResult contact_without_thickness(const CcdQuery& query, bool decide_exactly, bool nonpenetration_checked,

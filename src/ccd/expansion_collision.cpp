@@ -1,7 +1,7 @@
 // The middle tier of the thickness-0 CCD: the exact reference's decision procedure (exact_reference.cpp) with
-// floating-point expansions instead of GMP rationals, for the queries the interval fast path cannot decide (contacts
-// exactly at t = 0 or 1, touching or missing by a rounding error at the coplanarity instant, motion coplanar for the
-// whole step, ...).
+// floating-point expansions instead of GMP rationals, for the queries the floating-point fast tier cannot decide
+// (contacts exactly at t = 0 or 1, touching or missing by a rounding error at the coplanarity instant, motion coplanar
+// for the whole step, ...).
 //
 // Same question: is the origin in conv W(t) at a root t of D(t) = det(x1 - x0, x2 - x0, x3 - x0)? All polynomials
 // (D, and the 2D cross and dot products of W in the three axis projections) get exact expansion coefficients. The

@@ -1,5 +1,5 @@
 #pragma once
-// Private: the middle tier of the thickness-0 CCD, between the interval fast path and the GMP rational reference.
+// Private: the middle tier of the thickness-0 CCD, between the floating-point fast tier and the GMP rational reference.
 #include <optional>
 
 #include "ccd/exact_reference.hpp"

@@ -289,7 +289,7 @@ void add_ccd_command(CLI::App& app) {
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()))
       ->capture_default_str();
   command->add_flag("--approximate", options->approximate,
-                    "Thickness 0 only: report the queries interval arithmetic leaves undecided as conservative hits "
+                    "Thickness 0 only: report the queries the floating-point fast tier leaves undecided as conservative hits "
                     "(a few false positives) instead of deciding them exactly");
   add_json_flag(*command, options->json);
   command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");

@@ -287,7 +287,7 @@ void add_detect_command(CLI::App& app) {
   command->add_option("--thickness", o->thickness, "Minimum separation, in mesh units")
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()));
   command->add_flag("--approximate", o->approximate,
-                    "Thickness 0 only: report the pairs interval arithmetic leaves undecided as conservative hits "
+                    "Thickness 0 only: report the pairs the floating-point fast tier leaves undecided as conservative hits "
                     "(toi a lower bound) instead of deciding them exactly");
   add_bvh_option(*command, o->bvh);
   add_filter_option(*command, o->filter);

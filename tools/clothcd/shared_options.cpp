@@ -54,7 +54,7 @@ HierarchyKind hierarchy_named(const std::string& bvh) { return kHierarchies.at(b
 void check_approximate_needs_zero_thickness(bool approximate, double thickness) {
   if (approximate && thickness > 0.0)
     throw std::invalid_argument(
-        "--approximate changes only how the touches of thickness 0 that interval arithmetic leaves open are reported; "
+        "--approximate changes only how the touches of thickness 0 that the floating-point fast tier leaves open are reported; "
         "with a thickness the test is a distance search with a safety margin (drop --approximate or --thickness)");
 }
 

@@ -33,8 +33,9 @@ struct CcdSettings {
   /// Lipschitz-bounded search of the distance over time; only pairs whose minimum distance lies within a rounding
   /// margin (about 1e-7 of the pair's extent) of thickness can stay undecided (ConservativeHit).
   double thickness = 0.0;
-  /// Thickness 0: what decides a query that outward-rounded interval arithmetic leaves undecided (the primitives touch
-  /// exactly, e.g. a vertex on an edge at the coplanarity time or at t = 0 or 1, or miss by about a rounding error).
+  /// Thickness 0: what decides a query that the floating-point fast tier (with rounding-error bounds) leaves undecided
+  /// (the primitives touch exactly, e.g. a vertex on an edge at the coplanarity time or at t = 0 or 1, or miss by
+  /// about a rounding error).
   /// true (the default): exact floating-point expansions decide it, then GMP rationals: every hit is proven, no false
   /// positive. false, the approximate mode: it is reported as a ConservativeHit (never a miss, a few false positives,
   /// toi only a lower bound).
@@ -61,7 +62,7 @@ struct CcdResult {
   /// Of the closest points at toi (approximate); {0, 0} when unknown.
   std::array<double, 2> parameters{};
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< Unit contact normal at toi (zero when unknown or degenerate).
-  /// True when neither the interval fast path nor the exact floating-point expansion tier could decide and GMP
+  /// True when neither the floating-point fast tier nor the exact floating-point expansion tier could decide and GMP
   /// rational arithmetic did.
   bool exact_fallback = false;
 };
@@ -86,9 +87,9 @@ enum class CcdFilter : std::uint8_t {
 /// Throws std::invalid_argument when a coordinate is NaN or infinite or the thickness is negative or not finite.
 void validate_query(const CcdQuery& query, const CcdSettings& settings = {});
 
-/// The fast, safe CCD test: never misses a collision. Thickness 0: interval arithmetic, and for the cases it leaves
-/// undecided exact arithmetic (or, without CcdSettings::decide_exactly, a ConservativeHit); thickness > 0: distance search
-/// in double precision with a conservative margin (see CcdSettings).
+/// The fast, safe CCD test: never misses a collision. Thickness 0: floating point with rounding-error bounds, and for
+/// the cases it leaves undecided exact arithmetic (or, without CcdSettings::decide_exactly, a ConservativeHit);
+/// thickness > 0: distance search in double precision with a conservative margin (see CcdSettings).
 /// Expects finite coordinates (see validate_query); non-finite input is reported as a ConservativeHit at toi 0.
 [[nodiscard]] CcdResult continuous_collision(const CcdQuery& query, const CcdSettings& settings = {});
 

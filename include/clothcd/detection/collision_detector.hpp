@@ -64,7 +64,7 @@ struct DetectorSettings {
   /// on a surface at the thickness, and the neighbouring pairs of a flat sheet; false gives the paper's filter exactly.
   bool projection_normals = true;
   /// Thickness 0: every pair is decided, so every reported collision is a proven one (true, the default); false is the
-  /// approximate mode, which reports the pairs interval arithmetic leaves undecided as conservative hits
+  /// approximate mode, which reports the pairs the floating-point fast tier leaves undecided as conservative hits
   /// (ccd::CcdSettings::decide_exactly).
   bool decide_exactly = true;
   /// Candidate pairs each thread holds between the broad phase and the exact test (1 .. kMaxBlockPairs): the search
