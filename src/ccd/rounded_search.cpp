@@ -43,6 +43,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/simd.hpp"
+
 namespace clothcd::ccd::detail {
 
 namespace {
@@ -65,6 +67,38 @@ constexpr int kDeepPieceBudget = 8;
 // A conservative hit's time of impact is tightened by at most kToiBisections halvings of its piece.
 constexpr int kToiBisections = 24;
 
+// W at time t: (1 - t) W(0) + t W(1).
+[[gnu::always_inline]] inline void interpolate(const RoundedQuery& query, double t, Points& w) {
+  const double s = 1.0 - t;
+  for (int d = 0; d < 3; ++d)
+    for (int m = 0; m < 4; ++m) w[d][m] = s * query.start[d][m] + t * query.end[d][m];
+}
+
+// The Bernstein coefficients of W_a x W_b on the piece from p to q, in the plane of the axes u and v.
+[[gnu::always_inline]] inline std::array<double, 3> cross_terms(const Points& p, const Points& q, int a, int b, int u,
+                                                                int v) {
+  return {p[u][a] * p[v][b] - p[v][a] * p[u][b],
+          0.5 * ((p[u][a] * q[v][b] + q[u][a] * p[v][b]) - (p[v][a] * q[u][b] + q[v][a] * p[u][b])),
+          q[u][a] * q[v][b] - q[v][a] * q[u][b]};
+}
+
+// cross_terms' error bound, from W's magnitudes.
+[[gnu::always_inline]] inline double cross_bound(const Points& magnitude, int a, int b, int u, int v) {
+  return 16.0 * kUnitRoundoff * (magnitude[u][a] * magnitude[v][b] + magnitude[v][a] * magnitude[u][b]) + 0x1p-900;
+}
+
+// De Casteljau halving of a cubic's coefficients; each error grows by added_error.
+[[gnu::always_inline]] inline void halve_cubic(const RoundedCubic& cubic, double added_error, RoundedCubic& left,
+                                               RoundedCubic& right) {
+  const std::array<double, 4>& b = cubic.b;
+  const double b01 = 0.5 * (b[0] + b[1]), b12 = 0.5 * (b[1] + b[2]), b23 = 0.5 * (b[2] + b[3]);
+  const double b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
+  const double b0123 = 0.5 * (b012 + b123);
+  const double error = cubic.error + added_error;
+  left = {{b[0], b01, b012, b0123}, error};
+  right = {{b0123, b123, b23, b[3]}, error};
+}
+
 int certain_sign(double value, double error) {
   return value > error ? 1 : (value < -error ? -1 : 0);
 }
@@ -77,19 +111,19 @@ int common_strict_sign(const RoundedCubic& cubic) {
 }
 
 // True when the boxes of W over the piece between the points p and q, widened by `error`, exclude the origin: some
-// coordinate has one strict sign in every box.
+// coordinate has one strict sign in every box. Two points per lane pair.
 bool boxes_exclude_origin(const Points& p, const Points& q, const Points& error) {
-  bool excluded = false;
+  namespace lanes = simd::baseline_lanes;
   for (int d = 0; d < 3; ++d) {
-    bool all_above = true;
-    bool all_below = true;
-    for (int m = 0; m < 4; ++m) {
-      all_above &= std::min(p[d][m], q[d][m]) > error[d][m];
-      all_below &= std::max(p[d][m], q[d][m]) < -error[d][m];
+    lanes::Masks above = lanes::Masks{} == 0, below = above;
+    for (int m = 0; m < 4; m += 2) {
+      const lanes::Doubles pm{p[d][m], p[d][m + 1]}, qm{q[d][m], q[d][m + 1]}, e{error[d][m], error[d][m + 1]};
+      above &= lanes::less(e, lanes::min(pm, qm));
+      below &= lanes::less(lanes::max(pm, qm), -e);
     }
-    excluded |= all_above | all_below;
+    if ((above[0] & above[1]) != 0 || (below[0] & below[1]) != 0) return true;
   }
-  return excluded;
+  return false;
 }
 
 enum class TriangleVerdict { Outside, Inside, Unknown };
@@ -112,11 +146,13 @@ SearchOutcome classify_projections(const RoundedQuery& query, const Points& p, c
   const int count = query.count;
   bool one_inside = false;
   for (int k = 0; k < 3; ++k) {
+    const int u = (k + 1) % 3;
+    const int v = (k + 2) % 3;
     int cross[4][4] = {};
     for (int a = 0; a < count; ++a) {
       for (int b = a + 1; b < count; ++b) {
-        const std::array<double, 3> c = cross_coefficients(p, q, a, b, k);
-        const double error = cross_error(query, a, b, k);
+        const std::array<double, 3> c = cross_terms(p, q, a, b, u, v);
+        const double error = cross_bound(query.magnitude, a, b, u, v);
         const int s0 = certain_sign(c[0], error);
         const bool one_sign = s0 == certain_sign(c[1], error) && s0 == certain_sign(c[2], error);
         const int s = one_sign ? s0 : 0;
@@ -158,7 +194,7 @@ RootBound first_root_lower_bound(double t0, double t1, RoundedCubic d, double ha
     const double mid = 0.5 * (t0 + t1);
     if (!(mid > t0 && mid < t1)) break;
     RoundedCubic left, right;
-    halve(d, halving_error, left, right);
+    halve_cubic(d, halving_error, left, right);
     if (common_strict_sign(left) != 0) {
       t0 = mid;
       d = right;
@@ -177,7 +213,7 @@ struct Halves {
 };
 
 void split_piece(const RoundedQuery& query, double mid, const Points& e0, const Points& e1, Halves& halves) {
-  point_at(query, mid, halves.middle);
+  interpolate(query, mid, halves.middle);
   halves.left_clear = boxes_exclude_origin(e0, halves.middle, query.point_error);
   halves.right_clear = boxes_exclude_origin(halves.middle, e1, query.point_error);
 }
@@ -234,7 +270,7 @@ SearchOutcome search_piece(Search& search, double t0, double t1, const Points& e
     return SearchOutcome::Undecided;
   }
   RoundedCubic left_d, right_d;
-  halve(d, query.halving_error, left_d, right_d);
+  halve_cubic(d, query.halving_error, left_d, right_d);
   if (!halves.left_clear) {
     const SearchOutcome left = search_piece(search, t0, mid, e0, halves.middle, depth + 1, left_d);
     if (left != SearchOutcome::Clear) return left;
@@ -317,34 +353,19 @@ std::optional<RoundedQuery> rounded_query(const CcdQuery& query) {
 }
 
 void point_at(const RoundedQuery& query, double t, Points& w) {
-  const double s = 1.0 - t;
-  for (int d = 0; d < 3; ++d)
-    for (int m = 0; m < 4; ++m) w[d][m] = s * query.start[d][m] + t * query.end[d][m];
+  interpolate(query, t, w);
 }
 
 std::array<double, 3> cross_coefficients(const Points& p, const Points& q, int a, int b, int k) {
-  const int u = (k + 1) % 3;
-  const int v = (k + 2) % 3;
-  return {p[u][a] * p[v][b] - p[v][a] * p[u][b],
-          0.5 * ((p[u][a] * q[v][b] + q[u][a] * p[v][b]) - (p[v][a] * q[u][b] + q[v][a] * p[u][b])),
-          q[u][a] * q[v][b] - q[v][a] * q[u][b]};
+  return cross_terms(p, q, a, b, (k + 1) % 3, (k + 2) % 3);
 }
 
 double cross_error(const RoundedQuery& query, int a, int b, int k) {
-  const int u = (k + 1) % 3;
-  const int v = (k + 2) % 3;
-  const Points& p = query.magnitude;
-  return 16.0 * kUnitRoundoff * (p[u][a] * p[v][b] + p[v][a] * p[u][b]) + 0x1p-900;
+  return cross_bound(query.magnitude, a, b, (k + 1) % 3, (k + 2) % 3);
 }
 
 void halve(const RoundedCubic& cubic, double added_error, RoundedCubic& left, RoundedCubic& right) {
-  const std::array<double, 4>& b = cubic.b;
-  const double b01 = 0.5 * (b[0] + b[1]), b12 = 0.5 * (b[1] + b[2]), b23 = 0.5 * (b[2] + b[3]);
-  const double b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
-  const double b0123 = 0.5 * (b012 + b123);
-  const double error = cubic.error + added_error;
-  left = {{b[0], b01, b012, b0123}, error};
-  right = {{b0123, b123, b23, b[3]}, error};
+  halve_cubic(cubic, added_error, left, right);
 }
 
 SearchAnswer search_step(const RoundedQuery& query, bool deep, double until) {
