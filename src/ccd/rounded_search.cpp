@@ -16,12 +16,14 @@
 // coefficients there have one sign beyond their error bound (at least as tight as a product of the W boxes).
 //
 // Error bounds, u = 2^-53, coordinates at most 2^100 in magnitude (no overflow). Underflow: a rounded product or
-// halving may err by 2^-1075 in absolute terms, which the absolute terms below cover.
+// halving may err by 2^-1075 in absolute terms, which the absolute terms below cover. Those terms are normal numbers,
+// and magnitudes are at least 2^-500 so that their products stay normal: subnormal operands and results cost about
+// 100 cycles each (microcode assists) on common CPUs, and exact zeros are common in W.
 //   - A rounded difference x_i - x_j is within 1.01 u of its magnitude (one rounding; exact when subnormal), and its
 //     sign is exact. Per coordinate of W's point m, W_max = the larger magnitude of its two rounded ends.
 //   - point_at: (1 - t) W(0) + t W(1), 1 - t exact for the dyadic times used: the ends' errors (1.01 u W_max) plus
 //     three roundings of at most u W_max each (and underflow): point_error = 4 u W_max + 2^-1022. Both the exact and
-//     the rounded W(t) are at most magnitude = W_max (1 + 2^-40) + 2^-1022.
+//     the rounded W(t) are at most magnitude = W_max (1 + 2^-40) + 2^-500.
 //   - cross_coefficients: with x, y, z, w the coordinates of x y - z w, inputs within their point_error e and at most
 //     their magnitude P: each product moves by at most P_x e_y + P_y e_x (the middle coefficient halves four products,
 //     two products' worth), so 8 u (P_x P_y + P_z P_w) plus at most 4 x 2^102 x 2^-1022 from the absolute terms; the
@@ -36,7 +38,7 @@
 //   - halve: each new coefficient is an average of two (up to three levels deep), each average adding at most u B
 //     (and an underflow), where B bounds every coefficient's magnitude on every piece: the exact ones lie in the hull
 //     of the step's (de Casteljau is a convex combination), so B = (max |d.b| + 2 d.error) (1 + 2^-40) holds for the
-//     first 2^11 halvings; halving_error = 4 u B + 2^-1070.
+//     first 2^11 halvings; halving_error = 4 u B + 2^-1000.
 // Tests that compare rounded values with their exact rational values: tests/ccd/test_rounded_search.cpp.
 #include "ccd/rounded_search.hpp"
 
@@ -334,7 +336,7 @@ std::optional<RoundedQuery> rounded_query(const CcdQuery& query) {
     for (int m = 0; m < 4; ++m) {
       const double w_max = std::max(std::abs(rounded.start[d][m]), std::abs(rounded.end[d][m]));
       rounded.point_error[d][m] = 4.0 * kUnitRoundoff * w_max + 0x1p-1022;
-      rounded.magnitude[d][m] = w_max * (1.0 + 0x1p-40) + 0x1p-1022;
+      rounded.magnitude[d][m] = w_max * (1.0 + 0x1p-40) + 0x1p-500;
     }
   }
   // D is trilinear in its edge vectors (a, b, c), so its tripled Bernstein coefficients are a0.(b0 x c0) times 3,
@@ -348,7 +350,7 @@ std::optional<RoundedQuery> rounded_query(const CcdQuery& query) {
   rounded.d.error = 64.0 * kUnitRoundoff * p3 + 0x1p-1000;
   double largest = 0.0;
   for (const double b : rounded.d.b) largest = std::max(largest, std::abs(b));
-  rounded.halving_error = 4.0 * kUnitRoundoff * (largest + 2.0 * rounded.d.error) * (1.0 + 0x1p-40) + 0x1p-1070;
+  rounded.halving_error = 4.0 * kUnitRoundoff * (largest + 2.0 * rounded.d.error) * (1.0 + 0x1p-40) + 0x1p-1000;
   return rounded;
 }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "ccd/rounded_search.hpp"
@@ -220,4 +221,25 @@ TEST_CASE("queries at extreme scales get the unscaled query's answer", "[ccd][ro
   CHECK(fast.hit);
   CHECK(fast.toi <= 0.5);
   CHECK(fast.toi >= 0.5 - 1e-6);
+}
+
+TEST_CASE("the rounded tier's bounds stay normal numbers where W has exact zeros", "[ccd][rounded]") {
+  // A flat cloth's pair: every z difference exactly 0 (subnormal products there cost a microcode assist each).
+  const CcdQuery flat = clothcd::test::make_query(
+      PairKind::EdgeEdge, {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0.5, -0.5, 0), Vector3d(0.5, 0.5, 0)},
+      {Vector3d(0, 0.1, 0), Vector3d(1, 0.1, 0), Vector3d(0.5, -0.4, 0), Vector3d(0.5, 0.6, 0)});
+  const std::optional<RoundedQuery> rounded = clothcd::ccd::detail::rounded_query(flat);
+  REQUIRE(rounded);
+  const double smallest_normal = std::numeric_limits<double>::min();
+  for (int d = 0; d < 3; ++d) {
+    for (int m = 0; m < 4; ++m) {
+      CHECK(rounded->point_error[d][m] >= smallest_normal);
+      CHECK(rounded->magnitude[d][m] * rounded->magnitude[d][m] >= smallest_normal);
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) CHECK(clothcd::ccd::detail::cross_error(*rounded, a, b, k) >= smallest_normal);
+  CHECK(rounded->d.error >= smallest_normal);
+  CHECK(rounded->halving_error >= smallest_normal);
 }
