@@ -1,7 +1,7 @@
 #pragma once
-// Private: closed intervals of doubles with outward rounding, for the safe floating-point CCD. Every operation widens
-// its rounded-to-nearest result by more than one rounding error, so the true real result of the operation on any real
-// numbers inside the operands lies inside the result:
+// Private: closed intervals of doubles with outward rounding, for the exact tiers of the CCD (their sign filters) and
+// the shared-plane test. Every operation widens its rounded-to-nearest result by more than one rounding error, so the
+// true real result of the operation on any real numbers inside the operands lies inside the result:
 //   - a sum or difference is exact when its result is subnormal (gradual underflow), so 2^-51 of its magnitude is
 //     enough: exact zeros stay exact, and no subnormal number is ever made out of nothing;
 //   - a product underflows only when its exact value is below 2^-1022 in magnitude, which needs an operand endpoint
@@ -61,9 +61,6 @@ using lanes::Masks;
 
 inline Interval exact(double x) {
   return {x, x};
-}
-inline Interval hull(const Interval& a, const Interval& b) {
-  return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
 }
 /// The rounded {a.lo + b.lo, a.hi + b.hi}, widened.
 [[gnu::always_inline]] inline Interval operator+(const Interval& a, const Interval& b) {
