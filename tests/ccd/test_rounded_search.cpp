@@ -90,29 +90,47 @@ std::array<mpq_class, 4> exact_d(const CcdQuery& query) {
           det(a1, b1, c0) + det(a1, b0, c1) + det(a0, b1, c1), 3 * det(a1, b1, c1)};
 }
 
+// A random query, its rounded form, and a random dyadic piece [t0, t1] of its step, at most max_depth halvings deep.
+struct RandomPiece {
+  CcdQuery query;
+  RoundedQuery rounded;
+  double t0 = 0.0;
+  double t1 = 1.0;
+};
+
+RandomPiece random_piece(std::mt19937& random, int max_depth) {
+  RandomPiece piece;
+  piece.query = random_query(random);
+  const std::optional<RoundedQuery> rounded = clothcd::ccd::detail::rounded_query(piece.query);
+  REQUIRE(rounded);
+  piece.rounded = *rounded;
+  const int levels = std::uniform_int_distribution<int>(0, max_depth)(random);
+  const long k = std::uniform_int_distribution<long>(0, (1L << levels) - 1)(random);
+  piece.t0 = std::ldexp(static_cast<double>(k), -levels);
+  piece.t1 = std::ldexp(static_cast<double>(k + 1), -levels);
+  return piece;
+}
+
 }  // namespace
 
 TEST_CASE("rounded W at dyadic times is within point_error of the exact W", "[ccd][rounded]") {
   std::mt19937 random(20261129u);
-  std::uniform_int_distribution<int> depth(0, 30);
   int inexact = 0;
   for (int i = 0; i < 3000; ++i) {
-    const CcdQuery query = random_query(random);
-    const std::optional<RoundedQuery> rounded = clothcd::ccd::detail::rounded_query(query);
-    REQUIRE(rounded);
-    const int levels = depth(random);
-    const long k = std::uniform_int_distribution<long>(0, (1L << levels))(random);
-    const double t = std::ldexp(static_cast<double>(k), -levels);
-    WPoints w;
-    clothcd::ccd::detail::point_at(*rounded, t, w);
-    const ExactPoints truth = exact_w_at(query, exact(t));
-    for (int d = 0; d < 3; ++d) {
-      for (int m = 0; m < 4; ++m) {
-        INFO("query " << i << " t " << t << " axis " << d << " point " << m);
-        CHECK(within(w[d][m], truth[d][m], rounded->point_error[d][m]));
-        CHECK(abs(truth[d][m]) <= exact(rounded->magnitude[d][m]));
-        CHECK(std::abs(w[d][m]) <= rounded->magnitude[d][m]);
-        inexact += exact(w[d][m]) != truth[d][m] ? 1 : 0;
+    const RandomPiece piece = random_piece(random, 30);
+    const RoundedQuery& rounded = piece.rounded;
+    for (const double t : {piece.t0, piece.t1}) {
+      WPoints w;
+      clothcd::ccd::detail::point_at(rounded, t, w);
+      const ExactPoints truth = exact_w_at(piece.query, exact(t));
+      for (int d = 0; d < 3; ++d) {
+        for (int m = 0; m < 4; ++m) {
+          INFO("query " << i << " t " << t << " axis " << d << " point " << m);
+          CHECK(within(w[d][m], truth[d][m], rounded.point_error[d][m]));
+          CHECK(abs(truth[d][m]) <= exact(rounded.magnitude[d][m]));
+          CHECK(std::abs(w[d][m]) <= rounded.magnitude[d][m]);
+          inexact += exact(w[d][m]) != truth[d][m] ? 1 : 0;
+        }
       }
     }
   }
@@ -121,19 +139,15 @@ TEST_CASE("rounded W at dyadic times is within point_error of the exact W", "[cc
 
 TEST_CASE("rounded cross products' Bernstein coefficients on a piece are within cross_error", "[ccd][rounded]") {
   std::mt19937 random(11u);
-  std::uniform_int_distribution<int> depth(0, 20), axis(0, 2), point(0, 3);
+  std::uniform_int_distribution<int> axis(0, 2), point(0, 3);
   int inexact = 0;
   for (int i = 0; i < 3000; ++i) {
-    const CcdQuery query = random_query(random);
-    const std::optional<RoundedQuery> rounded = clothcd::ccd::detail::rounded_query(query);
-    REQUIRE(rounded);
-    const int levels = depth(random);
-    const long k = std::uniform_int_distribution<long>(0, (1L << levels) - 1)(random);
-    const double t0 = std::ldexp(static_cast<double>(k), -levels), t1 = std::ldexp(static_cast<double>(k + 1), -levels);
+    const RandomPiece piece = random_piece(random, 20);
+    const double t0 = piece.t0, t1 = piece.t1;
     WPoints p, q;
-    clothcd::ccd::detail::point_at(*rounded, t0, p);
-    clothcd::ccd::detail::point_at(*rounded, t1, q);
-    const ExactPoints ep = exact_w_at(query, exact(t0)), eq = exact_w_at(query, exact(t1));
+    clothcd::ccd::detail::point_at(piece.rounded, t0, p);
+    clothcd::ccd::detail::point_at(piece.rounded, t1, q);
+    const ExactPoints ep = exact_w_at(piece.query, exact(t0)), eq = exact_w_at(piece.query, exact(t1));
     const int k_axis = axis(random), a = point(random), b = point(random);
     const int u = (k_axis + 1) % 3, v = (k_axis + 2) % 3;
     const std::array<mpq_class, 3> truth = {
@@ -143,7 +157,7 @@ TEST_CASE("rounded cross products' Bernstein coefficients on a piece are within 
     const std::array<double, 3> c = clothcd::ccd::detail::cross_coefficients(p, q, a, b, k_axis);
     for (int j = 0; j < 3; ++j) {
       INFO("query " << i << " piece [" << t0 << ", " << t1 << "] coefficient " << j);
-      CHECK(within(c[j], truth[j], clothcd::ccd::detail::cross_error(*rounded, a, b, k_axis)));
+      CHECK(within(c[j], truth[j], clothcd::ccd::detail::cross_error(piece.rounded, a, b, k_axis)));
       inexact += exact(c[j]) != truth[j] ? 1 : 0;
     }
   }
@@ -187,15 +201,14 @@ TEST_CASE("D's rounded Bernstein coefficients stay within their bound through re
   int inexact = 0, inexact_halving = 0;
   for (int i = 0; i < 2000; ++i) {
     INFO("query " << i);
-    const CcdQuery query = random_query(random);
-    const std::optional<RoundedQuery> rounded = clothcd::ccd::detail::rounded_query(query);
-    REQUIRE(rounded);
-    inexact += check_halving_path(random, rounded->d, exact_d(query), depth(random), rounded->halving_error);
+    const RandomPiece piece = random_piece(random, 0);
+    const RoundedQuery& rounded = piece.rounded;
+    inexact += check_halving_path(random, rounded.d, exact_d(piece.query), depth(random), rounded.halving_error);
     // The halving alone: the rounded coefficients taken as exact, so only halving_error covers the errors.
-    const RoundedCubic exactly_known{rounded->d.b, 0.0};
+    const RoundedCubic exactly_known{rounded.d.b, 0.0};
     std::array<mpq_class, 4> known;
-    for (int j = 0; j < 4; ++j) known[j] = exact(rounded->d.b[j]);
-    inexact_halving += check_halving_path(random, exactly_known, known, depth(random), rounded->halving_error);
+    for (int j = 0; j < 4; ++j) known[j] = exact(rounded.d.b[j]);
+    inexact_halving += check_halving_path(random, exactly_known, known, depth(random), rounded.halving_error);
   }
   CHECK(inexact > 5000);
   CHECK(inexact_halving > 5000);
