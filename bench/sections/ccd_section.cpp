@@ -254,9 +254,9 @@ SectionReport run_ccd(const BenchContext& context) {
         "alone culls 74% (VF) / 86% (EE). The paper's removal rates (Table 4: 34-39% non-penetration, 52-55% "
         "projection, 53-58% both, 52-57% network) were measured on its own simulation pairs, not on these queries: "
         "see the filters section for the comparable run. A few queries touch exactly (often at an irrational time) or "
-        "miss by about a rounding error: the floating-point fast tier cannot decide them, so the *approximate* rows report "
-        "them as *conservative* hits (never a miss; their false positives). The *exact* rows decide them with the "
-        "exact floating-point expansion tier instead (ccd::CcdSettings::decide_exactly), which dominates its mean "
+        "miss by about a rounding error: the floating-point fast tier cannot decide them, so the *approximate* rows "
+        "report them as *conservative* hits (never a miss; their false positives). The *exact* rows decide them with "
+        "the exact floating-point expansion tier instead (ccd::CcdSettings::decide_exactly), which dominates its mean "
         "time; *exact fallbacks* counts those that needed GMP rational arithmetic.\n\n";
   md += "![Culled fraction per mode](ccd_culling.svg)\n";
   md += peer_report(rows, peer_rows, peer_status, repeat);

@@ -521,9 +521,10 @@ SectionReport run_scale(const BenchContext& context) {
   md += "Targets of the scaling issue:\n\n";
   md += markdown_table({"measure", "ours", "peer", "ratio", "target", "verdict"}, targets);
   md += "\n### Exact decisions: old default, new default and the peer's narrow phase\n\n";
-  md += "Old default: `clothcd detect` with the pieces the floating-point fast tier leaves undecided reported as `conservative` "
-        "hits (flags: `" + join_flags(programs.approximate_flags) + "`); new default: every piece decided exactly "
-        "(flags: `" + join_flags(programs.exact_flags) + "`); the flags are chosen from what the program's "
+  md += "Old default: `clothcd detect` with the pieces the floating-point fast tier leaves undecided reported as "
+        "`conservative` hits (flags: `" + join_flags(programs.approximate_flags) +
+        "`); new default: every piece decided exactly (flags: `" + join_flags(programs.exact_flags) +
+        "`); the flags are chosen from what the program's "
         "`detect --help` lists. Both on one CPU in the same rounds as above, best round each. *False reports*: reported "
         "collisions that the exact rational reference (`ccd::exact_collision_reference`, GMP, on the pair's two "
         "frames) says do not touch during the step; every one on the shared steps, an evenly spaced sample of at most " +
