@@ -42,7 +42,7 @@ CcdQuery random_query(std::mt19937& random) {
       const double offset = spread * unit(random) * (choice == 1 ? std::ldexp(1.0, -smaller(random)) : 1.0);
       x[d] = choice == 0 ? centre[d] : centre[d] + offset;
     }
-    if (i > 0 && pick(random) == 0) x = i < 4 ? query.start[i - 1] : query.end[i - 5];
+    if (i % 4 > 0 && pick(random) == 0) x = i < 4 ? query.start[i - 1] : query.end[i - 5];  // a repeated point
   }
   return query;
 }
