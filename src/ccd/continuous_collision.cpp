@@ -35,9 +35,6 @@ namespace clothcd::ccd {
 
 namespace {
 
-// Beyond this magnitude the thickness search's distances could overflow.
-constexpr double kMaxFastCoordinate = 0x1p100;
-
 exact::RationalPoints rational_points(const CcdQuery& query) {
   exact::RationalPoints points;
   for (int i = 0; i < 4; ++i) {
@@ -47,14 +44,6 @@ exact::RationalPoints rational_points(const CcdQuery& query) {
     }
   }
   return points;
-}
-
-bool fits_fast_path(const CcdQuery& query) {
-  for (int i = 0; i < 4; ++i)
-    if (!(query.start[i].cwiseAbs().maxCoeff() <= kMaxFastCoordinate) ||
-        !(query.end[i].cwiseAbs().maxCoeff() <= kMaxFastCoordinate))
-      return false;
-  return true;
 }
 
 bool all_finite(const CcdQuery& query) {
@@ -181,7 +170,7 @@ CcdResult continuous_collision_until(const CcdQuery& query, const CcdSettings& s
   if (settings.thickness == 0.0)
     return contact_without_thickness(query, settings.decide_exactly, nonpenetration_checked, until);
   if (!projection_checked && projection_filter_culls(query, settings)) return CcdResult{};
-  if (fits_fast_path(query)) return detail::thick_contact(query, settings.thickness);
+  if (detail::fits_floating_point_tiers(query)) return detail::thick_contact(query, settings.thickness);
   // Coordinates this large could overflow the double distances: report a conservative hit. (Proving the touch on the
   // exact path only changed the state label, and its rational root isolation can take minutes on such magnitudes.)
   return make_hit(query, 0.0, CcdState::ConservativeHit);

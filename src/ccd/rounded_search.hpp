@@ -37,8 +37,11 @@ struct RoundedQuery {
   RoundedCubic d;              ///< D on the whole step.
 };
 
-/// The query as a RoundedQuery; nullopt when a coordinate is beyond 2^100 in magnitude (products could overflow): the
-/// exact tiers decide.
+/// True when every coordinate is at most 2^100 in magnitude: the floating-point tiers' range (at both thicknesses),
+/// where no product of theirs can overflow.
+[[nodiscard]] bool fits_floating_point_tiers(const CcdQuery& query);
+
+/// The query as a RoundedQuery; nullopt outside fits_floating_point_tiers (the exact tiers decide).
 [[nodiscard]] std::optional<RoundedQuery> rounded_query(const CcdQuery& query);
 
 /// W at time t in [0, 1], rounded: (1 - t) W(0) + t W(1), within point_error of the exact W(t).
