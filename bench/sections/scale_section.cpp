@@ -567,8 +567,9 @@ SectionReport run_scale(const BenchContext& context) {
   if (earliest_rows.empty()) {
     md += "Not measured: the program's `detect --help` lists no `--earliest`.\n";
   } else {
-    md += "`clothcd detect T0 T1 --earliest` (CollisionDetector::earliest_impact: windows of the first 1/16, 1/4 and "
-          "all of the step, each pair tested only up to the earliest contact found so far) in the same rounds as "
+    md += "`clothcd detect T0 T1 --earliest` (CollisionDetector::earliest_impact: consecutive time windows sized "
+          "from the motion and the candidate counts, each pair tested only up to the earliest contact found so far) "
+          "in the same rounds as "
           "above, on one CPU and on two, best round; times are the detector's own stage times, as for detection. "
           "Peer: its whole answer to the same question, its LBVH candidates (one thread, above) plus "
           "`Candidates.compute_collision_free_stepsize` over them (the batch column above; it returns its earliest "

@@ -44,7 +44,7 @@ class EarliestImpact(NamedTuple):
     pair: Optional[Collision]
     """The pair that sets toi (as detect() reports it), None without contact."""
     windows: int
-    """Time windows searched: the first 1/16 of the step, then 1/4, then all of it, until one holds a contact."""
+    """Consecutive time windows of the step searched, in time order, up to the first that holds a contact."""
 
 
 class Collisions:

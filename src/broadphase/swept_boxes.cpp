@@ -31,45 +31,41 @@ double grown_max(double x, double half) {
   return r + (std::fabs(r) * 0x1p-52 + 0x1p-1074);
 }
 
-// The swept box of vertex v into `box`.
-void vertex_box(const Vertices& start, const Vertices& end, double thickness, int v, FlatBox& box) {
+// x0 + t (x1 - x0) rounded (three roundings): off from the exact value by at most 5 units in the last place of the
+// larger end's magnitude for t in [0, 1], so moving it outwards by 2^-50 of that magnitude (8 units) and the smallest
+// subnormal covers it. `outwards` is -1 for a lower bound, +1 for an upper one. t = 0 and t = 1 give the ends exactly.
+double interpolated_bound(double x0, double x1, double t, double outwards) {
+  if (t == 0.0 || x0 == x1) return x0;
+  if (t == 1.0) return x1;
+  const double slack = std::fmax(std::fabs(x0), std::fabs(x1)) * 0x1p-50 + 0x1p-1074;
+  return x0 + t * (x1 - x0) + outwards * slack;
+}
+
+// The box of vertex v over the part [from, to] of the step (0 <= from < to <= 1) into `box`: the box of its positions
+// at `from` and `to` (each rounded outwards, interpolated_bound), grown by half the thickness. Linear motion over
+// [from, to] stays between those two positions; [0, 1] is the whole step's swept box.
+void part_vertex_box(const Vertices& start, const Vertices& end, double from, double to, double thickness, int v,
+                     FlatBox& box) {
   const double* p = start.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double half = 0.5 * thickness;
   for (int k = 0; k < 3; ++k) {
-    const double a = p[k], c = q[k];
-    box.min[k] = grown_min(a < c ? a : c, half);
-    box.max[k] = grown_max(a < c ? c : a, half);
-  }
-}
-
-// The box of vertex v over the first `window` of the step (a power of two in (0, 1]) into `box`, as vertex_box makes
-// it for the positions at 0 and `window`. The position at `window`, start + window (end - start), is rounded (twice,
-// the product by a power of two being exact): it is moved outwards by 2^-50 of the larger end's magnitude (more than
-// those two roundings) and the smallest subnormal. Rounding is monotone, so a longer window's box holds a shorter's.
-void window_vertex_box(const Vertices& start, const Vertices& end, double window, double thickness, int v,
-                       FlatBox& box) {
-  const double* p = start.data() + 3 * static_cast<std::ptrdiff_t>(v);
-  const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
-  vertex_box(start, start, thickness, v, box);
-  for (int k = 0; k < 3; ++k) {
-    if (p[k] == q[k]) continue;
-    const double at_window = p[k] + window * (q[k] - p[k]);
-    const double slack = std::fmax(std::fabs(p[k]), std::fabs(q[k])) * 0x1p-50 + 0x1p-1074;
-    box.min[k] = std::fmin(box.min[k], grown_min(at_window - slack, 0.5 * thickness));
-    box.max[k] = std::fmax(box.max[k], grown_max(at_window + slack, 0.5 * thickness));
+    const double lo = std::fmin(interpolated_bound(p[k], q[k], from, -1.0), interpolated_bound(p[k], q[k], to, -1.0));
+    const double hi = std::fmax(interpolated_bound(p[k], q[k], from, 1.0), interpolated_bound(p[k], q[k], to, 1.0));
+    box.min[k] = grown_min(lo, half);
+    box.max[k] = grown_max(hi, half);
   }
 }
 
 }  // namespace
 
-void compute_window_vertex_boxes(const Vertices& start, const Vertices& end, double window, double thickness,
-                                 SweptBoxes& boxes) {
+void compute_part_vertex_boxes(const Vertices& start, const Vertices& end, double from, double to, double thickness,
+                               SweptBoxes& boxes) {
   const int vertex_count = static_cast<int>(start.rows());
   boxes.vertices.resize(vertex_count);
   boxes.edges.clear();
   boxes.faces.clear();
-  for (int v = 0; v < vertex_count; ++v) window_vertex_box(start, end, window, thickness, v, boxes.vertices[v]);
+  for (int v = 0; v < vertex_count; ++v) part_vertex_box(start, end, from, to, thickness, v, boxes.vertices[v]);
 }
 
 void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes) {
@@ -77,13 +73,13 @@ void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, doub
   boxes.vertices.resize(vertex_count);
   boxes.edges.clear();
   boxes.faces.clear();
-  for (int v = 0; v < vertex_count; ++v) vertex_box(start, end, thickness, v, boxes.vertices[v]);
+  for (int v = 0; v < vertex_count; ++v) part_vertex_box(start, end, 0.0, 1.0, thickness, v, boxes.vertices[v]);
 }
 
 void update_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness,
                                const std::vector<std::uint8_t>& moved, SweptBoxes& boxes) {
   for (int v = 0; v < static_cast<int>(moved.size()); ++v) {
-    if (moved[static_cast<std::size_t>(v)] != 0) vertex_box(start, end, thickness, v, boxes.vertices[v]);
+    if (moved[static_cast<std::size_t>(v)] != 0) part_vertex_box(start, end, 0.0, 1.0, thickness, v, boxes.vertices[v]);
   }
 }
 

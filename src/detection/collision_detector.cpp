@@ -6,7 +6,8 @@
 // the collision budget. In parts: the bodies and their hierarchies (detector_bodies.hpp), the collisions and their
 // order (collision_collector.hpp: 96 + 16 bytes per collision at the peak) and the re-test of a repeated step
 // (retest_cache.hpp); this file runs a call through them. The earliest-impact search runs the same search over
-// growing windows of the step, the pipeline testing each pair only up to the earliest contact found so far.
+// consecutive time windows of the step (window_schedule.hpp), the pipeline testing each pair only up to the earliest
+// contact found so far.
 #include "clothcd/detection/collision_detector.hpp"
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include "pair_pipeline.hpp"
 #include "parallel_loop.hpp"
 #include "retest_cache.hpp"
+#include "window_schedule.hpp"
 
 namespace clothcd {
 namespace {
@@ -76,13 +78,8 @@ struct SearchScope {
   // With `test`: when set, look for the earliest contact up to the window's end or this bound instead (an earlier
   // window's earliest toi, else infinity); PairPipeline::earliest has the answer and no collision is kept.
   std::optional<double> earliest_bound;
-  double window = 1.0;  // with earliest_bound: the part of the step the boxes were refitted to
+  double window = 1.0;  // with earliest_bound: the end of the part of the step the boxes were refitted to
 };
-
-// The windows earliest_impact() searches in turn: the first 1/16 of the step, the first 1/4, all of it. A window costs
-// at least the search of the pairs whose boxes meet at the start (on a dense step about 60% of detect()), so a few
-// long windows: on the steps of the benchmark the contact is in the first one.
-constexpr double kEarliestWindows[] = {0x1p-4, 0x1p-2, 1.0};
 
 }  // namespace
 
@@ -286,29 +283,37 @@ EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_sta
   d.begin_call(caller_start, caller_end, "earliest_impact");
   d.retest.forget();  // the hierarchies hold a window's boxes, not those of the last detect()
 
-  // Each window's candidates hold the last one's (longer windows' boxes contain shorter ones'), and every pair that
-  // comes into contact within a window is one of its candidates: once the earliest toi found is inside the window,
-  // no pair outside it can come sooner.
+  // The windows are consecutive parts of the step: a pair that comes into contact within one is among its
+  // candidates, so once a window's search finds no contact, none comes before its end, and once it finds one, no pair
+  // of a later window can come sooner. Each window's pairs are tested from the start of the step (before the window
+  // they are clear) to its end or the earliest toi found so far.
   EarliestImpact answer;
   detail::KeyedCollision earliest;
   earliest.collision.toi = std::numeric_limits<double>::infinity();
   double task_ms = 0, wall_ms = 0;
   detail::PipelineCounts found;
+  const broadphase::BodyTopology& cloth = d.bodies.cloth().topology;
+  // What a window costs whatever its length, counted as candidates: a box per vertex, a refit of every face and edge.
+  const double fixed_cost = cloth.vertex_count + cloth.face_count() + cloth.edge_count();
   try {
-    for (const double window : kEarliestWindows) {
+    detail::WindowSchedule window(detail::relative_motion(cloth, d.current_start, d.current_end), fixed_cost);
+    while (true) {
       ++answer.windows;
+      const long candidates_before = found.vertex_face + found.edge_edge;
       auto t = Clock::now();
-      d.stats.rebuilds += d.bodies.refit_window(d.current_start, d.current_end, window, d.settings.thickness);
+      d.stats.rebuilds += d.bodies.refit_part(d.current_start, d.current_end, window.from(), window.to(),
+                                              d.settings.thickness);
       d.stats.refit_ms += milliseconds_since(t);
       t = Clock::now();
       SearchScope scope;
       scope.earliest_bound = earliest.collision.toi;
-      scope.window = window;
+      scope.window = window.to();
       d.search(d.current_start, d.current_end, scope, found, task_ms);
       wall_ms += milliseconds_since(t);
       const detail::KeyedCollision in_window = d.pipeline.earliest();
       if (detail::earlier_impact(in_window, earliest)) earliest = in_window;
-      if (earliest.collision.toi <= window) break;
+      if (earliest.collision.toi <= window.to() || window.last()) break;
+      window.advance(static_cast<double>(found.vertex_face + found.edge_edge - candidates_before));
     }
   } catch (...) {
     d.discard();

@@ -92,14 +92,14 @@ int DetectorBodies::refit(const Vertices& start, const Vertices& end, double thi
   return rebuilds;
 }
 
-int DetectorBodies::refit_window(const Vertices& start, const Vertices& end, double window, double thickness) {
+int DetectorBodies::refit_part(const Vertices& start, const Vertices& end, double from, double to, double thickness) {
   int rebuilds = 0;
-  broadphase::compute_window_vertex_boxes(start, end, window, thickness, cloth_.boxes);
+  broadphase::compute_part_vertex_boxes(start, end, from, to, thickness, cloth_.boxes);
   if (cloth_.bvh.update(cloth_.topology, cloth_.boxes, start, end) == broadphase::BvhUpdate::Rebuilt) ++rebuilds;
   for (Body& o : obstacles_) {
     if (!o.stale) continue;
     if (o.moving) {
-      broadphase::compute_window_vertex_boxes(o.start, o.end, window, thickness, o.boxes);
+      broadphase::compute_part_vertex_boxes(o.start, o.end, from, to, thickness, o.boxes);
     } else {
       broadphase::compute_swept_vertex_boxes(o.start, o.end, thickness, o.boxes);
     }

@@ -50,11 +50,11 @@ class DetectorBodies {
   /// hierarchies were rebuilt instead of refitted.
   int refit(const Vertices& start, const Vertices& end, double thickness, const std::vector<std::uint8_t>* moved);
 
-  /// refit() over the first `window` of the step only (a power of two in (0, 1]; broadphase::compute_window_vertex_boxes):
-  /// the cloth and the moving obstacles get the boxes of their motion over t in [0, window], which the next window's
-  /// boxes contain; a resting obstacle's boxes are the same for every window. Moving obstacles stay stale (their boxes
-  /// are not the whole step's). Returns how many hierarchies were rebuilt instead of refitted.
-  int refit_window(const Vertices& start, const Vertices& end, double window, double thickness);
+  /// refit() over the part [from, to] of the step only (0 <= from < to <= 1; broadphase::compute_part_vertex_boxes):
+  /// the cloth and the moving obstacles get the boxes of their motion over t in [from, to]; a resting obstacle's
+  /// boxes are the same for every part. Moving obstacles stay stale (their boxes are not the whole step's). Returns how
+  /// many hierarchies were rebuilt instead of refitted.
+  int refit_part(const Vertices& start, const Vertices& end, double from, double to, double thickness);
 
   /// What the pair pipeline reads, per body id, with the cloth at `start`/`end` (valid while those and the bodies are).
   [[nodiscard]] std::vector<BodyFrames> frames(const Vertices& start, const Vertices& end) const;

@@ -84,7 +84,7 @@ struct PipelineSettings {
   /// (PairPipeline::earliest). The pairs that collide within that bound count in the budget: a degenerate step (all
   /// of a collapsing cloth touching at the end) stops as detect() does.
   bool earliest = false;
-  double window = 1.0;  ///< With `earliest`: the part of the step the search needs.
+  double window = 1.0;  ///< With `earliest`: the end of the time window searched (pairs are tested up to it).
   /// With `earliest`: a time of impact found before this search (an earlier window's); pairs are tested up to it.
   double earliest_bound = std::numeric_limits<double>::infinity();
 };

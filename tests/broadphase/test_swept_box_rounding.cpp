@@ -54,3 +54,49 @@ TEST_CASE("swept boxes hold each position grown by exactly half the thickness, r
   }
   CHECK(rounded_inwards_to_nearest > 100);  // the cases the outward rounding exists for are there
 }
+
+TEST_CASE("a window's boxes hold the exact positions at its ends, rounded outwards", "[broadphase][boxes]") {
+  // Random coordinates from subnormal to 2^60, windows [from, to] of random dyadic ends: the exact rational position
+  // x0 + t (x1 - x0) at both ends, grown by half the thickness, lies in the box (linear motion between them then
+  // does too), and the box is no more than a few units in the last place of the larger end larger.
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-1070, 60), numerator(0, 1023);
+  int inexact_ends = 0;  // window ends whose rounded position differs from the exact one
+  for (int round = 0; round < 400; ++round) {
+    const int n = 16;
+    clothcd::Vertices start(n, 3), end(n, 3);
+    const double scale = std::ldexp(1.0, exponent(rng));
+    for (int v = 0; v < n; ++v) {
+      for (int c = 0; c < 3; ++c) {
+        start(v, c) = scale * unit(rng);
+        end(v, c) = v % 5 == 0 ? start(v, c) : scale * unit(rng);  // some coordinates do not move
+      }
+    }
+    const int a = numerator(rng), b = numerator(rng);
+    if (a == b) continue;
+    const double from = std::ldexp(static_cast<double>(std::min(a, b)), -10);
+    const double to = std::ldexp(static_cast<double>(std::max(a, b) + 1), -10);
+    const double thickness = round % 3 == 0 ? 0.0 : scale * std::fabs(unit(rng));
+    clothcd::broadphase::SweptBoxes boxes;
+    clothcd::broadphase::compute_part_vertex_boxes(start, end, from, to, thickness, boxes);
+    REQUIRE(boxes.vertices.size() == static_cast<std::size_t>(n));
+    const mpq_class half = mpq_class(thickness) / 2;
+    for (int v = 0; v < n; ++v) {
+      for (int c = 0; c < 3; ++c) {
+        INFO("round " << round << " vertex " << v << " window [" << from << ", " << to << "]");
+        const mpq_class x0(start(v, c)), x1(end(v, c));
+        const mpq_class at_from = x0 + mpq_class(from) * (x1 - x0), at_to = x0 + mpq_class(to) * (x1 - x0);
+        const clothcd::broadphase::FlatBox& box = boxes.vertices[static_cast<std::size_t>(v)];
+        CHECK(mpq_class(box.min[c]) <= (at_from < at_to ? at_from : at_to) - half);
+        CHECK(mpq_class(box.max[c]) >= (at_from < at_to ? at_to : at_from) + half);
+        const double magnitude = std::max(std::fabs(start(v, c)), std::fabs(end(v, c))) + thickness;
+        const mpq_class loose(magnitude * 0x1p-47 + 0x1p-1070);
+        CHECK(mpq_class(box.min[c]) >= (at_from < at_to ? at_from : at_to) - half - loose);
+        CHECK(mpq_class(box.max[c]) <= (at_from < at_to ? at_to : at_from) + half + loose);
+        inexact_ends += mpq_class(start(v, c) + to * (end(v, c) - start(v, c))) != at_to;
+      }
+    }
+  }
+  CHECK(inexact_ends > 1000);  // the rounding the slack covers does occur
+}

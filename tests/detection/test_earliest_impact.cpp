@@ -156,7 +156,7 @@ bool check_against_reference(const Step& step) {
                     << found.toi << " in " << found.windows << " windows");
   REQUIRE(found.hit == reference.hit);
   CHECK(found.windows >= 1);
-  CHECK(found.windows <= 3);
+  CHECK(found.windows <= 1024);  // windows are at least 2^-10 of the step long
   if (!reference.hit) {
     CHECK(found.toi == 1.0);
   } else {
@@ -218,7 +218,7 @@ TEST_CASE("earliest impact: crumpled cloths against the brute-force exact refere
 }
 
 TEST_CASE("earliest impact: a cloth folding onto itself, contact late in the step", "[detection][earliest]") {
-  // A strip bent into a U whose arms close in: they meet at about t = 0.8 (the third window).
+  // A strip bent into a U whose arms close in: they meet at about t = 0.8 (a later window).
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
   Step step;
@@ -234,9 +234,42 @@ TEST_CASE("earliest impact: a cloth folding onto itself, contact late in the ste
     if (along > 0.2) step.end(v, 0) = -arm * 0.05 + jitter(rng);
   }
   const EarliestImpact found = earliest_of(step, DetectorSettings{});
-  CHECK(found.windows == 3);
+  CHECK(found.windows >= 2);
   CHECK(found.toi > 0.25);
   check_against_reference(step);
+}
+
+TEST_CASE("earliest impact: pieces thrown across each other, many short windows", "[detection][earliest]") {
+  // Four small squares of one cloth, each flying some 30 edge lengths towards the middle with seeded tilts and speeds:
+  // the schedule starts with a window of 1/64 of the step, and the pieces meet windows later.
+  int with_contact = 0;
+  for (int seed = 1; seed <= 6; ++seed) {
+    INFO("seed " << seed);
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    std::uniform_real_distribution<double> tilt(-0.3, 0.3), speed(0.8, 1.2);
+    const TriangleMesh piece = clothcd::make_grid(3, 3, 0.2, 0.2);
+    const Eigen::Index n = piece.vertices.rows();
+    Step step;
+    step.cloth.vertices.resize(4 * n, 3);
+    step.cloth.faces.resize(4 * piece.faces.rows(), 3);
+    step.end.resize(4 * n, 3);
+    for (int k = 0; k < 4; ++k) {
+      const double angle = 1.5707963267948966 * k;
+      const Eigen::RowVector3d out(std::cos(angle), tilt(rng), std::sin(angle));
+      const Eigen::RowVector3d offset(0.05 * k, 0.05 * k, 0.0);
+      for (Eigen::Index v = 0; v < n; ++v) {
+        step.cloth.vertices.row(k * n + v) = piece.vertices.row(v) + 1.2 * out + offset;
+        step.end.row(k * n + v) = piece.vertices.row(v) - 1.2 * speed(rng) * out + offset;
+      }
+      step.cloth.faces.middleRows(k * piece.faces.rows(), piece.faces.rows()) =
+          piece.faces.array() + static_cast<int>(k * n);
+    }
+    const EarliestImpact found = earliest_of(step, DetectorSettings{});
+    INFO("toi " << found.toi << " in " << found.windows << " windows");
+    CHECK(found.windows >= 3);
+    with_contact += check_against_reference(step) ? 1 : 0;
+  }
+  CHECK(with_contact >= 4);
 }
 
 TEST_CASE("earliest impact: obstacles moving by positions and rigidly", "[detection][earliest]") {
@@ -308,7 +341,7 @@ TEST_CASE("earliest impact: no contact, and a contact at the start", "[detection
     const EarliestImpact found = earliest_of(step, DetectorSettings{});
     CHECK_FALSE(found.hit);
     CHECK(found.toi == 1.0);
-    CHECK(found.windows == 3);
+    CHECK(found.windows >= 2);
     check_against_reference(step);
   }
   SECTION("a cloth lying on the box's top at the start: 0") {

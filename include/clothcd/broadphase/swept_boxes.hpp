@@ -60,12 +60,11 @@ void compute_swept_boxes(const BodyTopology& topology, const Vertices& start, co
 /// for a Bvh (which derives edge and face boxes from the vertex boxes in its own order) and for body_box().
 void compute_swept_vertex_boxes(const Vertices& start, const Vertices& end, double thickness, SweptBoxes& boxes);
 
-/// compute_swept_vertex_boxes over the first `window` of the step only (a power of two in (0, 1]): each vertex box
-/// bounds the vertex's linear motion over t in [0, window] (the rounded position at `window` moved outwards to cover
-/// its rounding; a coordinate that does not move is kept exact). Boxes of a longer window contain those of a shorter
-/// one, and window 1 contains compute_swept_vertex_boxes' boxes.
-void compute_window_vertex_boxes(const Vertices& start, const Vertices& end, double window, double thickness,
-                                 SweptBoxes& boxes);
+/// compute_swept_vertex_boxes over the part [from, to] of the step only (0 <= from < to <= 1): each vertex box bounds
+/// the vertex's linear motion over t in [from, to] (its rounded positions at `from` and `to` moved outwards to cover
+/// their rounding; a coordinate that does not move is kept exact). [0, 1] gives compute_swept_vertex_boxes' boxes.
+void compute_part_vertex_boxes(const Vertices& start, const Vertices& end, double from, double to, double thickness,
+                               SweptBoxes& boxes);
 
 /// compute_swept_vertex_boxes for the vertices flagged in `moved` (non-zero, one flag per vertex) only: `boxes` must
 /// hold the boxes of every other vertex for these positions already (from the same thickness), which it keeps.

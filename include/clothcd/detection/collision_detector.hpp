@@ -143,9 +143,10 @@ class CollisionDetector {
 
   /// The step's earliest time of impact (see EarliestImpact): how far the cloth can move from `start` towards `end`
   /// (taken as detect() takes them; the obstacles as set for the step) before any pair detect() covers comes into
-  /// contact, or within DetectorSettings::thickness. Searches only as much of the step as it needs (the first 1/16,
-  /// then 1/4, then all of it) and tests each pair only up to the earliest contact found so far, so an early contact
-  /// costs far less than detect(). The answer does not depend on the thread count. Like detect(), it ends the step
+  /// contact, or within DetectorSettings::thickness. Searches only as much of the step as it needs (consecutive time
+  /// windows in time order, up to the first that holds a contact) and tests each pair only up to the earliest contact
+  /// found so far, so an early contact costs far less than detect(), and a fast motion's short windows have far fewer
+  /// candidates than its whole step. The answer does not depend on the thread count. Like detect(), it ends the step
   /// (a moved obstacle rests at its end afterwards) and throws std::invalid_argument on wrong sizes or non-finite
   /// coordinates, DetectionCancelled when cancelled, and CollisionBudgetExceeded when more than
   /// DetectorSettings::max_collisions pairs of a window come into contact no later than the earliest contact found so

@@ -20,8 +20,10 @@ struct EarliestImpact {
   /// With `hit`: the pair that sets `toi`, as detect() would report it. Among pairs with the same toi, the one
   /// detect() lists first (vertex-face pairs before edge-edge pairs).
   Collision pair;
-  /// How many time windows were searched: the first 1/16 of the step, then the first 1/4, then all of it, stopping at
-  /// the first window that holds a contact (a window's candidates are the pairs whose boxes meet during it).
+  /// How many time windows were searched: consecutive parts of the step in time order, stopping at the first that
+  /// holds a contact (a window's candidates are the pairs whose boxes over that part meet). The first is the part in
+  /// which the mesh moves about half an edge length (at most 1/16 of the step); the next ones are sized from the
+  /// candidate counts of the windows before.
   int windows = 0;
 };
 
