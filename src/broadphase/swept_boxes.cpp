@@ -50,10 +50,11 @@ void part_vertex_box(const Vertices& start, const Vertices& end, double from, do
   const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double half = 0.5 * thickness;
   for (int k = 0; k < 3; ++k) {
-    const double lo = std::fmin(interpolated_bound(p[k], q[k], from, -1.0), interpolated_bound(p[k], q[k], to, -1.0));
-    const double hi = std::fmax(interpolated_bound(p[k], q[k], from, 1.0), interpolated_bound(p[k], q[k], to, 1.0));
-    box.min[k] = grown_min(lo, half);
-    box.max[k] = grown_max(hi, half);
+    // Comparisons, not fmin / fmax: a NaN end reaches the box (where the hierarchy build refuses it).
+    const double lo_from = interpolated_bound(p[k], q[k], from, -1.0), lo_to = interpolated_bound(p[k], q[k], to, -1.0);
+    const double hi_from = interpolated_bound(p[k], q[k], from, 1.0), hi_to = interpolated_bound(p[k], q[k], to, 1.0);
+    box.min[k] = grown_min(lo_from < lo_to ? lo_from : lo_to, half);
+    box.max[k] = grown_max(hi_from < hi_to ? hi_to : hi_from, half);
   }
 }
 
