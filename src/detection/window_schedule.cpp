@@ -12,8 +12,11 @@ constexpr int kShortestExponent = -10;  // windows at least 2^-10 of the step lo
 constexpr int kLongestFirstExponent = -4;
 constexpr int kMostDoublings = 3;  // a window 1/8 to 8 times as long as the last
 
-// The exponent of the power of two nearest `length` (> 0) on a logarithmic scale.
-int nearest_exponent(double length) { return static_cast<int>(std::lround(std::log2(length))); }
+// The exponent of the power of two nearest `length` on a logarithmic scale, within [-64, 64] (-64 for 0 or NaN).
+int nearest_exponent(double length) {
+  if (!(length > 0.0)) return -64;
+  return static_cast<int>(std::lround(std::clamp(std::log2(length), -64.0, 64.0)));
+}
 
 }  // namespace
 

@@ -96,3 +96,14 @@ TEST_CASE("window schedule: relative motion of a mesh", "[detection][earliest]")
   clothcd::Vertices collapsed = clothcd::Vertices::Zero(grid.vertices.rows(), 3);
   CHECK(std::isinf(clothcd::detail::relative_motion(topology, collapsed, moved)));
 }
+
+TEST_CASE("window schedule: extreme counts still cover the step with valid windows", "[detection][earliest]") {
+  // Counts jumping by twelve orders of magnitude, alternating with zero, or growing without bound: every window is
+  // still a power of two of at least 2^-10 (checked in lengths()), and the windows end at 1.
+  for (const double motion : {0.0, 3.0, 1e300}) {
+    lengths(motion, 1.0, [](double from, double) { return from < 0.2 ? 1.0 : 1e12; });
+    lengths(motion, 1e6, [](double from, double) { return static_cast<int>(from * 1024) % 2 == 0 ? 0.0 : 1e9; });
+    lengths(motion, 1e-300, [](double, double to) { return std::exp(700.0 * to); });
+    lengths(motion, 1.0, [](double from, double to) { return 1e300 * (to - from) * (to - from) * (to - from); });
+  }
+}
