@@ -31,18 +31,25 @@ double grown_max(double x, double half) {
   return r + (std::fabs(r) * 0x1p-52 + 0x1p-1074);
 }
 
-// x0 + t (x1 - x0) rounded (three roundings): off from the exact value by at most 5 units in the last place of the
-// larger end's magnitude for t in [0, 1], so moving it outwards by 2^-50 of that magnitude (8 units) and the smallest
-// subnormal covers it. `outwards` is -1 for a lower bound, +1 for an upper one. t = 0 and t = 1 give the ends exactly.
-double interpolated_bound(double x0, double x1, double t, double outwards) {
-  if (t == 0.0 || x0 == x1) return x0;
-  if (t == 1.0) return x1;
-  const double slack = std::fmax(std::fabs(x0), std::fabs(x1)) * 0x1p-50 + 0x1p-1074;
-  return x0 + t * (x1 - x0) + outwards * slack;
+// Bounds [lo, hi] of x0 + t (x1 - x0) for t in [0, 1]. Rounded (three roundings), the value is off from the exact
+// one by at most 5 units in the last place of the larger end's magnitude, so moving it outwards by 2^-50 of that
+// magnitude (8 units, of which that subtraction's own rounding takes at most one) and the smallest subnormal covers it. t = 0 and t = 1 (and a coordinate that does not move)
+// give the end exactly.
+inline void interpolated_bounds(double x0, double x1, double t, double& lo, double& hi) {
+  if (t == 0.0 || x0 == x1) {
+    lo = hi = x0;
+  } else if (t == 1.0) {
+    lo = hi = x1;
+  } else {
+    const double at = x0 + t * (x1 - x0);
+    const double slack = std::fmax(std::fabs(x0), std::fabs(x1)) * 0x1p-50 + 0x1p-1074;
+    lo = at - slack;
+    hi = at + slack;
+  }
 }
 
 // The box of vertex v over the part [from, to] of the step (0 <= from < to <= 1) into `box`: the box of its positions
-// at `from` and `to` (each rounded outwards, interpolated_bound), grown by half the thickness. Linear motion over
+// at `from` and `to` (each rounded outwards, interpolated_bounds), grown by half the thickness. Linear motion over
 // [from, to] stays between those two positions; [0, 1] is the whole step's swept box.
 void part_vertex_box(const Vertices& start, const Vertices& end, double from, double to, double thickness, int v,
                      FlatBox& box) {
@@ -50,9 +57,10 @@ void part_vertex_box(const Vertices& start, const Vertices& end, double from, do
   const double* q = end.data() + 3 * static_cast<std::ptrdiff_t>(v);
   const double half = 0.5 * thickness;
   for (int k = 0; k < 3; ++k) {
+    double lo_from, hi_from, lo_to, hi_to;
+    interpolated_bounds(p[k], q[k], from, lo_from, hi_from);
+    interpolated_bounds(p[k], q[k], to, lo_to, hi_to);
     // Comparisons, not fmin / fmax: a NaN end reaches the box (where the hierarchy build refuses it).
-    const double lo_from = interpolated_bound(p[k], q[k], from, -1.0), lo_to = interpolated_bound(p[k], q[k], to, -1.0);
-    const double hi_from = interpolated_bound(p[k], q[k], from, 1.0), hi_to = interpolated_bound(p[k], q[k], to, 1.0);
     box.min[k] = grown_min(lo_from < lo_to ? lo_from : lo_to, half);
     box.max[k] = grown_max(hi_from < hi_to ? hi_to : hi_from, half);
   }
