@@ -321,7 +321,7 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
   spheres_.clear();
   obbs_.clear();
   if (settings_.volume == VolumeKind::Obb) fit_obb_axes(topology, start, end);
-  refit(boxes);
+  refit(boxes, parallel);
   built_looseness_ = looseness_;
   ++build_count_;
 }
@@ -381,7 +381,7 @@ void Bvh::check_vertex_boxes(const BodyTopology& topology, const SweptBoxes& box
 
 // Edge and face boxes are unions of vertex boxes (as compute_swept_boxes makes them), so they are made here from the
 // vertex boxes, straight in tree order.
-void Bvh::refit(const SweptBoxes& boxes) {
+void Bvh::refit(const SweptBoxes& boxes, bool first_fill_parallel) {
   const FlatBox* vertex_boxes = boxes.vertices.data();
   const auto face_boxes = [&] {
     ordered_face_boxes_.resize(face_order_.size());
@@ -408,9 +408,9 @@ void Bvh::refit(const SweptBoxes& boxes) {
     }
     packed_edge_boxes_.assign(ordered_edge_boxes_);
   };
-  // The three kinds are independent: large bodies fill them on parallel tasks (the first fill of a body also touches
-  // its fresh memory).
-  if (settings_.parallel && static_cast<int>(face_order_.size()) >= kParallelRefitFaces) {
+  // The three kinds are independent: large bodies fill them on parallel tasks, and so does a build's first fill of
+  // a body too small for that (its arrays are fresh memory, whose first touch costs more than the fill).
+  if (first_fill_parallel || (settings_.parallel && static_cast<int>(face_order_.size()) >= kParallelRefitFaces)) {
     tbb::parallel_invoke(face_boxes, vertex_boxes_in_order, edge_boxes);
   } else {
     face_boxes();

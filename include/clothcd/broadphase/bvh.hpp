@@ -128,7 +128,9 @@ class Bvh {
 
  private:
   static void check_vertex_boxes(const BodyTopology& topology, const SweptBoxes& boxes);
-  void refit(const SweptBoxes& boxes);
+  // Recomputes every volume from `boxes` in the current tree; `first_fill_parallel`: fill the primitive boxes on
+  // parallel tasks whatever the body's size (a build's first fill).
+  void refit(const SweptBoxes& boxes, bool first_fill_parallel = false);
   void refit_moved(const SweptBoxes& boxes, const std::vector<std::uint8_t>& moved);
   void fit_node(int i);
   void sum_looseness();
