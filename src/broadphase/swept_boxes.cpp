@@ -33,8 +33,8 @@ double grown_max(double x, double half) {
 
 // Bounds [lo, hi] of x0 + t (x1 - x0) for t in [0, 1]. Rounded (three roundings), the value is off from the exact
 // one by at most 5 units in the last place of the larger end's magnitude, so moving it outwards by 2^-50 of that
-// magnitude (8 units, of which that subtraction's own rounding takes at most one) and the smallest subnormal covers it. t = 0 and t = 1 (and a coordinate that does not move)
-// give the end exactly.
+// magnitude (8 units, of which that subtraction's own rounding takes at most one) and the smallest subnormal covers
+// it. t = 0 and t = 1 (and a coordinate that does not move) give the end exactly.
 inline void interpolated_bounds(double x0, double x1, double t, double& lo, double& hi) {
   if (t == 0.0 || x0 == x1) {
     lo = hi = x0;
