@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -17,12 +18,14 @@
 #include <tbb/parallel_invoke.h>
 
 #include "node_obb_axes.hpp"
+#include "support/simd.hpp"
 
 namespace clothcd::broadphase {
 namespace {
 
 // Relative padding that keeps rounding from shrinking a sphere or OBB below what it must contain.
 constexpr double kPad = 1e-12;
+constexpr float kFloatInfinity = std::numeric_limits<float>::infinity();
 
 double box_area(const FlatBox& b) {
   const double dx = b.max[0] - b.min[0], dy = b.max[1] - b.min[1], dz = b.max[2] - b.min[2];
@@ -54,35 +57,33 @@ geometry::Sphere merge_spheres(const geometry::Sphere& a, const geometry::Sphere
 }
 
 // A triangle during the build, in single precision (the splits only choose where to cut; the node volumes are
-// refitted from the double-precision boxes): its box's centre (times two), its box and its index, kept in tree order
-// so that the splits read memory in sequence. Half the size of double-precision items, so each level of the build
-// moves half the memory.
+// refitted from the double-precision boxes): its box, its box's centre (times two) and its index, kept in tree order
+// so that the splits read memory in sequence. The box is stored as its low corner and its negated high corner, so
+// that the union of two boxes is a lane-wise minimum of two vector pairs.
 struct BuildItem {
   // Left uninitialised (not zeroed by std::vector): the build's parallel fill then touches the fresh pages first.
   BuildItem() {}  // NOLINT(modernize-use-equals-default): `= default` would let value-initialisation zero it
+  simd::F32x4 low;             // lo x, y, z, 0
+  simd::F32x4 negated_high;    // -hi x, y, z, 0
   float centroid[3];
-  float lo[3];
-  float hi[3];
   int face;
 };
 
-// A box of build items (single precision).
+// A box of build items (single precision), in BuildItem's layout.
 struct ItemBox {
-  float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
-                 std::numeric_limits<float>::infinity()};
-  float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                 -std::numeric_limits<float>::infinity()};
+  simd::F32x4 low = simd::F32x4{} + kFloatInfinity;
+  simd::F32x4 negated_high = simd::F32x4{} + kFloatInfinity;
 
-  void expand(const float* other_lo, const float* other_hi) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = other_lo[k] < lo[k] ? other_lo[k] : lo[k];
-      hi[k] = other_hi[k] > hi[k] ? other_hi[k] : hi[k];
-    }
+  void expand(simd::F32x4 other_low, simd::F32x4 other_negated_high) {
+    low = other_low < low ? other_low : low;
+    negated_high = other_negated_high < negated_high ? other_negated_high : negated_high;
   }
-  void expand(const ItemBox& o) { expand(o.lo, o.hi); }
+  void expand(const ItemBox& o) { expand(o.low, o.negated_high); }
+  [[nodiscard]] float lo(int axis) const { return low[axis]; }
+  [[nodiscard]] float hi(int axis) const { return -negated_high[axis]; }
   // Half the surface area (in double: the costs compare sums of many areas).
   [[nodiscard]] double half_area() const {
-    const double dx = double{hi[0]} - lo[0], dy = double{hi[1]} - lo[1], dz = double{hi[2]} - lo[2];
+    const double dx = double{hi(0)} - lo(0), dy = double{hi(1)} - lo(1), dz = double{hi(2)} - lo(2);
     return dx * dy + dy * dz + dz * dx;
   }
 };
@@ -97,7 +98,8 @@ constexpr int kSahBins = 16;
 // The bin of centroid coordinate x for bins of width 1 / scale from lo: 0 .. kSahBins - 1 (0 for NaN).
 int bin_of(float x, float lo, float scale) {
   const float b = (x - lo) * scale;
-  return b >= 1.0f ? std::min(kSahBins - 1, static_cast<int>(std::min(b, static_cast<float>(kSahBins)))) : 0;
+  const float clamped = b > 0.0f ? (b < kSahBins - 1 ? b : kSahBins - 1) : 0.0f;  // without branches
+  return static_cast<int>(clamped);
 }
 
 // Where to split items[begin, end): the binned surface-area heuristic over the centroid bounds (the split that
@@ -106,9 +108,12 @@ int bin_of(float x, float lo, float scale) {
 int split_range(BuildContext& context, int begin, int end) {
   ItemBox bounds;
   const auto first = context.items.begin() + begin, last = context.items.begin() + end;
-  for (auto item = first; item != last; ++item) bounds.expand(item->centroid, item->centroid);
-  const float* lo = bounds.lo;
-  const float* hi = bounds.hi;
+  for (auto item = first; item != last; ++item) {
+    const simd::F32x4 c{item->centroid[0], item->centroid[1], item->centroid[2], 0.0f};
+    bounds.expand(c, -c);
+  }
+  const std::array<float, 3> lo{bounds.lo(0), bounds.lo(1), bounds.lo(2)};
+  const std::array<float, 3> hi{bounds.hi(0), bounds.hi(1), bounds.hi(2)};
   // Bins need a finite, non-zero extent and scale (no NaN, infinite or subnormal extent reaches the bin index).
   std::array<float, 3> scale{};
   std::array<bool, 3> binned{};
@@ -122,9 +127,8 @@ int split_range(BuildContext& context, int begin, int end) {
   std::array<std::array<int, kSahBins>, 3> bin_count{};
   for (auto item = first; item != last; ++item) {
     for (int axis = 0; axis < 3; ++axis) {
-      if (!binned[axis]) continue;
       const int bin = bin_of(item->centroid[axis], lo[axis], scale[axis]);
-      bin_box[axis][bin].expand(item->lo, item->hi);
+      bin_box[axis][bin].expand(item->low, item->negated_high);
       ++bin_count[axis][bin];
     }
   }
@@ -164,7 +168,7 @@ int split_range(BuildContext& context, int begin, int end) {
                      [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
     return middle;
   }
-  const auto middle = std::stable_partition(first, last, [&](const BuildItem& item) {
+  const auto middle = std::partition(first, last, [&](const BuildItem& item) {
     return bin_of(item.centroid[best_axis], lo[best_axis], scale[best_axis]) <= best_bin;
   });
   return static_cast<int>(middle - context.items.begin());
@@ -252,11 +256,11 @@ void Bvh::build(const BodyTopology& topology, const SweptBoxes& boxes, const Ver
     for (int f = begin; f < end; ++f) {
       BuildItem& item = items[static_cast<std::size_t>(f)];
       const FlatBox b = face_box(topology, boxes, f);
-      for (int k = 0; k < 3; ++k) {
-        item.centroid[k] = static_cast<float>(b.min[k] + b.max[k]);
-        item.lo[k] = static_cast<float>(b.min[k]);
-        item.hi[k] = static_cast<float>(b.max[k]);
-      }
+      for (int k = 0; k < 3; ++k) item.centroid[k] = static_cast<float>(b.min[k] + b.max[k]);
+      item.low = simd::F32x4{static_cast<float>(b.min[0]), static_cast<float>(b.min[1]),
+                             static_cast<float>(b.min[2]), 0.0f};
+      item.negated_high = -simd::F32x4{static_cast<float>(b.max[0]), static_cast<float>(b.max[1]),
+                                       static_cast<float>(b.max[2]), 0.0f};
       item.face = f;
     }
   };
