@@ -6,6 +6,8 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace clothcd::broadphase {
 namespace {
@@ -38,21 +40,39 @@ BodyTopology build_body_topology(const Faces& faces, int vertex_count) {
     for (int k = 0; k < 3; ++k) topology.vertex_owner[faces(f, k)] = f;
   }
 
-  // (smaller vertex, larger vertex, face) triples sorted: each run of equal edges starts with its first face.
-  std::vector<std::array<int, 3>> half_edges;
-  half_edges.reserve(3 * static_cast<std::size_t>(face_count));
+  // The (smaller vertex, larger vertex, face) triples in lexicographic order, so that each run of equal edges starts
+  // with its first face: bucketed by the smaller vertex (a counting sort), then each bucket, a vertex's few
+  // neighbours, sorted by (larger vertex, face).
+  std::vector<int> bucket_start(static_cast<std::size_t>(vertex_count) + 1, 0);
+  const auto half_edge = [&](int f, int k) {
+    const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+    return std::pair<int, int>{std::min(a, b), std::max(a, b)};
+  };
   for (int f = 0; f < face_count; ++f) {
     for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      if (a != b) half_edges.push_back({std::min(a, b), std::max(a, b), f});
+      const auto [low, high] = half_edge(f, k);
+      if (low != high) ++bucket_start[static_cast<std::size_t>(low) + 1];
     }
   }
-  std::sort(half_edges.begin(), half_edges.end());
-  for (std::size_t i = 0; i < half_edges.size(); ++i) {
-    if (i > 0 && half_edges[i][0] == half_edges[i - 1][0] && half_edges[i][1] == half_edges[i - 1][1]) continue;
-    topology.edges.push_back(half_edges[i][0]);
-    topology.edges.push_back(half_edges[i][1]);
-    topology.edge_owner.push_back(half_edges[i][2]);
+  for (int v = 0; v < vertex_count; ++v) bucket_start[v + 1] += bucket_start[v];
+  std::vector<std::pair<int, int>> by_low(static_cast<std::size_t>(bucket_start.back()));  // (larger vertex, face)
+  std::vector<int> filled(bucket_start.begin(), bucket_start.end() - 1);
+  for (int f = 0; f < face_count; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const auto [low, high] = half_edge(f, k);
+      if (low != high) by_low[static_cast<std::size_t>(filled[low]++)] = {high, f};
+    }
+  }
+  topology.edges.reserve(by_low.size());  // about two half-edges per edge
+  for (int v = 0; v < vertex_count; ++v) {
+    const auto first = by_low.begin() + bucket_start[v], last = by_low.begin() + bucket_start[v + 1];
+    std::sort(first, last);
+    for (auto h = first; h != last; ++h) {
+      if (h != first && h->first == (h - 1)->first) continue;
+      topology.edges.push_back(v);
+      topology.edges.push_back(h->first);
+      topology.edge_owner.push_back(h->second);
+    }
   }
   return topology;
 }
