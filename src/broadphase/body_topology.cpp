@@ -3,7 +3,6 @@
 #include "clothcd/broadphase/body_topology.hpp"
 
 #include <algorithm>
-#include <array>
 #include <stdexcept>
 #include <string>
 #include <utility>

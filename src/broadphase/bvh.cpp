@@ -95,7 +95,8 @@ struct BuildContext {
 
 constexpr int kSahBins = 16;
 
-// The bin of centroid coordinate x for bins of width 1 / scale from lo: 0 .. kSahBins - 1 (0 for NaN).
+// The bin of centroid coordinate x for bins of width 1 / scale from lo: 0 .. kSahBins - 1 (0 for NaN, the last for
+// infinity).
 int bin_of(float x, float lo, float scale) {
   const float b = (x - lo) * scale;
   const float clamped = b > 0.0f ? (b < kSahBins - 1 ? b : kSahBins - 1) : 0.0f;  // without branches
@@ -114,7 +115,8 @@ int split_range(BuildContext& context, int begin, int end) {
   }
   const std::array<float, 3> lo{bounds.lo(0), bounds.lo(1), bounds.lo(2)};
   const std::array<float, 3> hi{bounds.hi(0), bounds.hi(1), bounds.hi(2)};
-  // Bins need a finite, non-zero extent and scale (no NaN, infinite or subnormal extent reaches the bin index).
+  // Only an axis of finite, non-zero extent and scale is split by its bins (a zero, subnormal or infinite extent makes
+  // every bin index of the axis 0 or the last, bin_of clamping NaN and infinities, and the axis is skipped).
   std::array<float, 3> scale{};
   std::array<bool, 3> binned{};
   for (int axis = 0; axis < 3; ++axis) {
