@@ -15,7 +15,7 @@
 #include "../suite/ipctk_peer.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 
 namespace clothcd::bench {
 namespace {

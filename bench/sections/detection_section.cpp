@@ -15,7 +15,7 @@
 #include "../suite/draped_frames.hpp"
 #include "../suite/fcl_peer.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/simulation/simulator.hpp"
 
 namespace clothcd::bench {

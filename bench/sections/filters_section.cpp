@@ -15,10 +15,10 @@
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
-#include "clothcd/learning/model_card.hpp"
-#include "clothcd/learning/pair_classifier.hpp"
+#include "clothcd/culling/model_card.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
 
 namespace clothcd::bench {
 namespace {

@@ -12,7 +12,7 @@
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
-#include "clothcd/learning/model_card.hpp"
+#include "clothcd/culling/model_card.hpp"
 #include "clothcd/learning/model_evaluation.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 

@@ -18,7 +18,7 @@
 
 #include "bench_section.hpp"
 #include "bench_util.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/model_catalog.hpp"
 #include "machine_info.hpp"
 

@@ -3,8 +3,8 @@
 // Every fault is a std::runtime_error (or std::invalid_argument from the validation).
 #include <stdexcept>
 
-#include "clothcd/learning/model_card.hpp"
-#include "clothcd/learning/network_weights.hpp"
+#include "clothcd/culling/model_card.hpp"
+#include "clothcd/culling/network_weights.hpp"
 #include "fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -15,7 +15,7 @@
 #include "bindings.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 
 namespace clothcd::python {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/simulation/scene.hpp"
 #include "clothcd/simulation/simulator.hpp"
 

@@ -1,6 +1,6 @@
 // Body topology: unique edges and primitive owners. Assigning each vertex and edge to exactly one incident triangle is
 // how a triangle hierarchy avoids testing a vertex twice (Jin et al., section 3.3.2).
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 
 #include <algorithm>
 #include <stdexcept>

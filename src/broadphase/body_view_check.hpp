@@ -2,7 +2,7 @@
 // The broad phase's check of a body's data at its entry points (the searches and their brute-force references).
 // Internal to the broad phase.
 
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/traversal.hpp"
 
 namespace clothcd::broadphase::detail {
 

@@ -1,6 +1,6 @@
 // The broad phase's brute-force references (brute_force_candidates.hpp): every primitive pair tested by its swept
 // boxes, with the same skipping rules as the hierarchy searches, which the tests compare with these.
-#include "clothcd/broadphase/brute_force_candidates.hpp"
+#include "broadphase/brute_force_candidates.hpp"
 
 #include "broadphase/body_view_check.hpp"
 

@@ -3,7 +3,7 @@
 // and a rebuild when the refitted tree has grown too loose. Sphere nodes follow Jin et al.,
 // section 3.2.1 (bounding spheres for non-root nodes); the root's second volume, its AABB, is built by the search only
 // when the root spheres overlap (traversal.cpp).
-#include "clothcd/broadphase/bvh.hpp"
+#include "broadphase/bvh.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,5 +1,5 @@
 // Canonical order of candidate pairs, so that results do not depend on the hierarchy or the thread schedule.
-#include "clothcd/broadphase/candidates.hpp"
+#include "broadphase/candidates.hpp"
 
 #include <algorithm>
 

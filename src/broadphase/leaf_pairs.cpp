@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "clothcd/broadphase/bvh.hpp"
-#include "clothcd/broadphase/packed_boxes.hpp"
+#include "broadphase/bvh.hpp"
+#include "broadphase/packed_boxes.hpp"
 #include "support/simd.hpp"
 
 namespace clothcd::broadphase::detail {

@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "clothcd/broadphase/candidates.hpp"
-#include "clothcd/broadphase/packed_boxes.hpp"
-#include "clothcd/broadphase/traversal.hpp"
-#include "clothcd/simd_level.hpp"
+#include "broadphase/candidates.hpp"
+#include "broadphase/packed_boxes.hpp"
+#include "broadphase/traversal.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::broadphase::detail {
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Dense>
 
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::broadphase::detail {

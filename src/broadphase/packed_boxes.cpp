@@ -3,13 +3,13 @@
 // original value, since that conversion moves it by at most 2^-24 of its magnitude (or half a subnormal step), and it
 // stays below the largest float. Bounds of magnitude 1e38 or more (and infinities) get a fixed float on the
 // conservative side: 9e37 below a huge positive value, -infinity below a huge negative one, and symmetrically above.
-#include "clothcd/broadphase/packed_boxes.hpp"
+#include "broadphase/packed_boxes.hpp"
 
 #include <cmath>
 #include <cstring>
 #include <limits>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd.hpp"
 
 namespace clothcd::broadphase {

@@ -1,7 +1,7 @@
 // Swept primitive boxes for continuous collision detection: with linear motion over the step, a primitive stays inside
 // the box of its positions at t0 and t1, so that box bounds everything it sweeps. Each box is grown by half of the
 // thickness: two primitives within the thickness of each other are within it along each axis, so grown boxes meet.
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/swept_boxes.hpp"
 
 #include <cmath>
 #include <limits>

@@ -6,7 +6,7 @@
 // (loose spheres alone let far more node pairs through on thin cloth). The search is split into independent tasks for
 // TBB; each task writes its own buffer and the buffers are joined in task order, so the output does not depend on the
 // schedule.
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/traversal.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -23,8 +23,8 @@
 
 #include "broadphase/body_view_check.hpp"
 #include "broadphase/leaf_pairs.hpp"
-#include "clothcd/broadphase/packed_boxes.hpp"
-#include "clothcd/simd_level.hpp"
+#include "broadphase/packed_boxes.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::broadphase {
 namespace {

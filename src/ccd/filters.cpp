@@ -19,7 +19,7 @@
 
 #include "ccd/projection_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/ccd/pair_measures.hpp"
+#include "ccd/pair_measures.hpp"
 
 namespace clothcd::ccd {
 

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <utility>
 
-#include "clothcd/ccd/pair_measures.hpp"
+#include "ccd/pair_measures.hpp"
 #include "support/simd.hpp"
 
 namespace clothcd::ccd::detail {

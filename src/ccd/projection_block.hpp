@@ -6,7 +6,7 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/pair_block.hpp"
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::ccd::detail {
 

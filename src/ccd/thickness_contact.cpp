@@ -23,7 +23,7 @@
 #include <cmath>
 #include <limits>
 
-#include "clothcd/geometry/closest_points.hpp"
+#include "geometry/closest_points.hpp"
 
 namespace clothcd::ccd::detail {
 

@@ -17,11 +17,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/pair_culler.hpp"
 #include "collision_collector.hpp"
 #include "detector_bodies.hpp"
+#include "detector_plan.hpp"
 #include "pair_pipeline.hpp"
 #include "parallel_loop.hpp"
 #include "retest_cache.hpp"
@@ -33,42 +34,12 @@ namespace {
 using Clock = detail::StageClock;
 using detail::milliseconds_since;
 
-ccd::CcdFilter ccd_filter(CullingMode mode) {
-  switch (mode) {
-    case CullingMode::None: return ccd::CcdFilter::None;
-    case CullingMode::NonPenetration: return ccd::CcdFilter::NonPenetration;
-    case CullingMode::Projection: return ccd::CcdFilter::Projection;
-    case CullingMode::Filters: return ccd::CcdFilter::Combined;
-    case CullingMode::Network: return ccd::CcdFilter::Combined;
-  }
-  throw std::invalid_argument("collision detector: unknown culling mode");
-}
-
 void check_positions(const PositionsRef& positions, Eigen::Index rows, const std::string& what) {
   if (positions.rows() != rows) {
     throw std::invalid_argument(what + " has " + std::to_string(positions.rows()) + " rows, expected " +
                                 std::to_string(rows));
   }
   if (!positions.allFinite()) throw std::invalid_argument(what + " has a NaN or infinite coordinate");
-}
-
-void check_settings(const DetectorSettings& settings) {
-  if (!(settings.thickness >= 0.0) || !std::isfinite(settings.thickness)) {
-    throw std::invalid_argument("collision detector: the thickness must be finite and >= 0");
-  }
-  if (settings.max_leaf_faces < 1) throw std::invalid_argument("collision detector: max_leaf_faces must be >= 1");
-  if (settings.block_pairs < 1 || settings.block_pairs > kMaxBlockPairs) {
-    throw std::invalid_argument("collision detector: block_pairs must be between 1 and " +
-                                std::to_string(kMaxBlockPairs));
-  }
-  if (settings.max_collisions < 1 || settings.max_collisions > kLargestCollisionBudget) {
-    throw std::invalid_argument("collision detector: max_collisions must be between 1 and " +
-                                std::to_string(kLargestCollisionBudget));
-  }
-  if (settings.culling == CullingMode::Network && !settings.culler) {
-    throw std::invalid_argument("collision detector: Network culling needs DetectorSettings::culler (e.g. "
-                                "learning::load_network_culler)");
-  }
 }
 
 // Which pairs a search visits and what it does with them.
@@ -84,16 +55,12 @@ struct SearchScope {
 }  // namespace
 
 struct CollisionDetector::Impl {
-  Impl(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& detector_settings)
-      : settings(detector_settings),
-        filter(ccd_filter(detector_settings.culling)),
-        culler(detector_settings.culling == CullingMode::Network ? detector_settings.culler : nullptr),
-        bodies(cloth_faces, cloth_vertex_count, detector_settings),
-        pipeline(detector_settings.block_pairs) {}
+  Impl(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
+      : plan(settings),
+        bodies(cloth_faces, cloth_vertex_count, plan.cloth_hierarchy, plan.obstacle_volume),
+        pipeline(plan.pipeline, plan.settings.block_pairs) {}
 
-  DetectorSettings settings;
-  ccd::CcdFilter filter = ccd::CcdFilter::None;
-  std::shared_ptr<const PairCuller> culler;  // CullingMode::Network only
+  detail::DetectorPlan plan;     // the settings, checked and translated once
   BlockObserver observer;                    // set_block_observer
   std::function<bool()> cancel;              // set_cancel_check
   detail::DetectorBodies bodies;
@@ -113,7 +80,7 @@ struct CollisionDetector::Impl {
   // Whether a re-test may keep the last call's answer: enabled, no culler (its answer is not a function of the pair
   // alone), and no obstacle changed since. A moving obstacle is stale again after every call, so its steps are always
   // searched in full.
-  [[nodiscard]] bool may_reuse() const { return settings.reuse_unchanged && !culler; }
+  [[nodiscard]] bool may_reuse() const { return plan.settings.reuse_unchanged && !plan.culler; }
 
   // The search with the cloth at `start`/`end`, every candidate culled and, with scope.test, tested as it is found and
   // its collisions added to `collected` (unsorted). Adds the counts to `found` and the search's time summed over its
@@ -123,33 +90,28 @@ struct CollisionDetector::Impl {
               double& task_ms) {
     frames = bodies.frames(start, end);
     keys.assign(frames);
-    detail::PipelineSettings pipeline_settings;
-    pipeline_settings.filter = filter;
-    pipeline_settings.ccd = ccd::CcdSettings{settings.thickness, settings.decide_exactly};
-    pipeline_settings.projection = ccd::ProjectionFilterOptions{settings.projection_normals};
-    pipeline_settings.culler = culler.get();
-    pipeline_settings.exact = scope.test;
-    pipeline_settings.observer = scope.test && !scope.earliest_bound && observer ? &observer : nullptr;
-    pipeline_settings.max_collisions = settings.max_collisions;
-    pipeline_settings.cancel = &cancel;
+    detail::PipelineSearch pipeline_search;
+    pipeline_search.exact = scope.test;
+    pipeline_search.observer = scope.test && !scope.earliest_bound && observer ? &observer : nullptr;
+    pipeline_search.cancel = &cancel;
     if (scope.earliest_bound) {
-      pipeline_settings.earliest = true;
-      pipeline_settings.window = scope.window;
-      pipeline_settings.earliest_bound = *scope.earliest_bound;
+      pipeline_search.earliest = true;
+      pipeline_search.window = scope.window;
+      pipeline_search.earliest_bound = *scope.earliest_bound;
     }
-    pipeline.begin(frames, keys, pipeline_settings, scope.test ? static_cast<long>(collected.size()) : 0);
+    pipeline.begin(frames, keys, pipeline_search, scope.test ? static_cast<long>(collected.size()) : 0);
 
-    broadphase::TraversalSettings traversal{settings.parallel, scope.only_moved ? &retest.moved() : nullptr};
-    traversal.chunk_pairs = static_cast<std::size_t>(settings.block_pairs);
+    broadphase::TraversalSettings traversal = plan.traversal;
+    traversal.moved_vertices = scope.only_moved ? &retest.moved() : nullptr;
     broadphase::TraversalStats traversal_stats;
     const broadphase::BodyView cloth_view = bodies.cloth_view();
-    if (settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, pipeline, &traversal_stats);
+    if (plan.settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, pipeline, &traversal_stats);
     for (int body = 1; body <= bodies.obstacle_count(); ++body) {
       broadphase::find_pair_candidates(cloth_view, bodies.obstacle_view(body), traversal, pipeline, &traversal_stats);
     }
     task_ms += traversal_stats.task_ms;
     pipeline.add_counts(found);
-    if (scope.test && !scope.earliest_bound) collected.take(pipeline, keys, settings.max_collisions);
+    if (scope.test && !scope.earliest_bound) collected.take(pipeline, keys, plan.settings.max_collisions);
   }
 
   // Starts a call of `caller` (its name for the messages): checks the cloth positions, copies them into
@@ -173,7 +135,7 @@ struct CollisionDetector::Impl {
 };
 
 CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
-    : impl_((check_settings(settings), std::make_unique<Impl>(cloth_faces, cloth_vertex_count, settings))) {}
+    : impl_(std::make_unique<Impl>(cloth_faces, cloth_vertex_count, settings)) {}
 
 CollisionDetector::~CollisionDetector() = default;
 CollisionDetector::CollisionDetector(CollisionDetector&&) noexcept = default;
@@ -236,7 +198,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
     }
 
     auto t = Clock::now();
-    d.stats.rebuilds = d.bodies.refit(start, end, d.settings.thickness, reuse ? &d.retest.moved() : nullptr);
+    d.stats.rebuilds = d.bodies.refit(start, end, d.plan.settings.thickness, reuse ? &d.retest.moved() : nullptr);
     d.stats.refit_ms = milliseconds_since(t);
 
     t = Clock::now();
@@ -302,7 +264,7 @@ EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_sta
       const long candidates_before = found.vertex_face + found.edge_edge;
       auto t = Clock::now();
       d.stats.rebuilds += d.bodies.refit_part(d.current_start, d.current_end, window.from(), window.to(),
-                                              d.settings.thickness);
+                                              d.plan.settings.thickness);
       d.stats.refit_ms += milliseconds_since(t);
       t = Clock::now();
       SearchScope scope;

@@ -6,31 +6,9 @@
 
 namespace clothcd::detail {
 
-namespace {
-
-broadphase::BvhSettings cloth_bvh_settings(const DetectorSettings& settings) {
-  broadphase::BvhSettings s;
-  s.max_leaf_faces = settings.max_leaf_faces;
-  s.rebuild_ratio = settings.rebuild_ratio;
-  s.parallel = settings.parallel;
-  s.volume = settings.hierarchy == HierarchyKind::SphereRootAabb ? broadphase::VolumeKind::Sphere
-                                                                 : broadphase::VolumeKind::Aabb;
-  return s;
-}
-
-broadphase::VolumeKind obstacle_volume(HierarchyKind hierarchy) {
-  switch (hierarchy) {
-    case HierarchyKind::SphereRootAabb: return broadphase::VolumeKind::Sphere;
-    case HierarchyKind::Aabb: return broadphase::VolumeKind::Aabb;
-    case HierarchyKind::AabbObb: return broadphase::VolumeKind::Obb;
-  }
-  throw std::invalid_argument("collision detector: unknown hierarchy kind");
-}
-
-}  // namespace
-
-DetectorBodies::DetectorBodies(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
-    : bvh_settings_(cloth_bvh_settings(settings)), obstacle_volume_(obstacle_volume(settings.hierarchy)) {
+DetectorBodies::DetectorBodies(const Faces& cloth_faces, int cloth_vertex_count,
+                               const broadphase::BvhSettings& cloth_hierarchy, broadphase::VolumeKind obstacle_volume)
+    : bvh_settings_(cloth_hierarchy), obstacle_volume_(obstacle_volume) {
   cloth_.topology = broadphase::build_body_topology(cloth_faces, cloth_vertex_count);
   cloth_.bvh = broadphase::Bvh(bvh_settings_);
 }

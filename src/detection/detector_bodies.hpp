@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/bvh.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/bvh.hpp"
+#include "broadphase/swept_boxes.hpp"
+#include "broadphase/traversal.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "pair_pipeline.hpp"
 
@@ -29,8 +29,10 @@ struct Body {
 /// The cloth and the obstacles of a detector.
 class DetectorBodies {
  public:
-  /// The cloth's topology; hierarchies are built with `settings`' volume, leaf size and rebuild ratio.
-  DetectorBodies(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings);
+  /// The cloth's topology; its hierarchy is built with `cloth_hierarchy`, the obstacles' with the same settings but
+  /// `obstacle_volume`.
+  DetectorBodies(const Faces& cloth_faces, int cloth_vertex_count, const broadphase::BvhSettings& cloth_hierarchy,
+                 broadphase::VolumeKind obstacle_volume);
 
   /// Adds a static obstacle; returns its body id (1, 2, ...). Throws std::invalid_argument on a non-finite coordinate.
   int add_obstacle(const TriangleMesh& mesh);

@@ -32,19 +32,19 @@ void PipelineCounts::add(const PipelineCounts& o) {
   exact_ms += o.exact_ms;
 }
 
-PairPipeline::PairPipeline(int block_pairs)
-    : workers_([block_pairs] { return Worker(block_pairs); }) {
+PairPipeline::PairPipeline(const PipelineSettings& settings, int block_pairs)
+    : settings_(settings), workers_([block_pairs] { return Worker(block_pairs); }) {
   Worker probe(block_pairs);  // a block that cannot be made is an error here, not in a search thread
 }
 
 void PairPipeline::begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys,
-                         const PipelineSettings& settings, long kept) {
+                         const PipelineSearch& search, long kept) {
   bodies_ = &bodies;
   keys_ = &keys;
-  settings_ = &settings;
+  search_ = search;
   discard();
   found_.store(kept, std::memory_order_relaxed);
-  earliest_toi_.store(settings.earliest_bound, std::memory_order_relaxed);
+  earliest_toi_.store(search.earliest_bound, std::memory_order_relaxed);
 }
 
 void PairPipeline::discard() {
@@ -58,10 +58,12 @@ void PairPipeline::discard() {
 }
 
 void PairPipeline::check_stop() const {
-  const PipelineSettings& s = *settings_;
-  if (s.cancel != nullptr && *s.cancel && (*s.cancel)()) throw DetectionCancelled();
+  const std::function<bool()>* cancel = search_.cancel;
+  if (cancel != nullptr && *cancel && (*cancel)()) throw DetectionCancelled();
   const long found = found_.load(std::memory_order_relaxed);
-  if (s.exact && found > s.max_collisions) throw CollisionBudgetExceeded(found, s.max_collisions);
+  if (search_.exact && found > settings_.max_collisions) {
+    throw CollisionBudgetExceeded(found, settings_.max_collisions);
+  }
 }
 
 namespace {
@@ -135,8 +137,9 @@ void PairPipeline::run_block(Worker& w) const {
   const int n = block.size();
   if (n == 0) return;
   check_stop();
-  const PipelineSettings& s = *settings_;
-  if (s.observer != nullptr) {
+  const PipelineSettings& s = settings_;
+  const PipelineSearch& search = search_;
+  if (search.observer != nullptr) {
     if (!w.observed) w.observed = std::make_unique<ccd::PairBlock>(block.capacity());
     *w.observed = block;
     w.observed_culled.assign(static_cast<std::size_t>(n), 1);
@@ -156,9 +159,9 @@ void PairPipeline::run_block(Worker& w) const {
   }
   w.counts.culled += n - survivors;
   w.counts.culling_ms += milliseconds_since(t);
-  if (s.exact && s.earliest) {
+  if (search.exact && search.earliest) {
     find_earliest(w, survivors, filtered, applied);
-  } else if (s.exact) {
+  } else if (search.exact) {
     t = StageClock::now();
     long hits = 0;
     for (int i = 0; i < survivors; ++i) {
@@ -166,7 +169,7 @@ void PairPipeline::run_block(Worker& w) const {
       const ccd::CcdResult r =
           ccd::continuous_collision_after_filter(block.query(i), s.ccd, i < filtered ? applied : ccd::CcdFilter::None);
       if (!r.hit) continue;
-      if (s.observer != nullptr) w.observed_colliding[block.tag(i)] = 1;
+      if (search.observer != nullptr) w.observed_colliding[block.tag(i)] = 1;
       KeyedCollision& h = add_collision(w);
       ++hits;
       h.key = w.keys[block.tag(i)];
@@ -175,18 +178,18 @@ void PairPipeline::run_block(Worker& w) const {
     w.counts.exact_ms += milliseconds_since(t);
     if (hits > 0) found_.fetch_add(hits, std::memory_order_relaxed);
   }
-  if (s.observer != nullptr) show_block(w, survivors);
+  if (search.observer != nullptr) show_block(w, survivors);
   block.reset(block.kind());
 }
 
 void PairPipeline::find_earliest(Worker& w, int survivors, int filtered, ccd::CcdFilter applied) const {
-  const PipelineSettings& s = *settings_;
+  const PipelineSettings& s = settings_;
   const ccd::PairBlock& block = w.block;
   const auto t = StageClock::now();
   const std::uint64_t kind_offset = block.kind() == PairKind::EdgeEdge ? keys_->vertex_face_key_count() : 0;
   long hits = 0;
   for (int i = 0; i < survivors; ++i) {
-    const double until = std::min(s.window, earliest_toi_.load(std::memory_order_relaxed));
+    const double until = std::min(search_.window, earliest_toi_.load(std::memory_order_relaxed));
     const ccd::CcdResult r = ccd::continuous_collision_until(block.query(i), s.ccd,
                                                              i < filtered ? applied : ccd::CcdFilter::None, until);
     hits += r.hit ? 1 : 0;
@@ -219,7 +222,7 @@ void PairPipeline::show_block(Worker& w, int survivors) const {
   seen.keys = w.keys.data();
   seen.culled = w.observed_culled.data();
   seen.colliding = w.observed_colliding.data();
-  (*settings_->observer)(seen);
+  (*search_.observer)(seen);
 }
 
 void PairPipeline::add_counts(PipelineCounts& counts) {

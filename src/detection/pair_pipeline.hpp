@@ -15,13 +15,15 @@
 #include <memory>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/pair_block.hpp"
 #include "clothcd/detection/block_observer.hpp"
 #include "clothcd/detection/collision.hpp"
+#include "ccd/pair_block.hpp"
 #include "clothcd/detection/pair_culler.hpp"
+#include "detection/culler_stage.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::detail {
@@ -67,15 +69,19 @@ struct KeyedCollision {
 /// (the order of detect()'s list).
 [[nodiscard]] bool earlier_impact(const KeyedCollision& a, const KeyedCollision& b);
 
-/// How the pipeline treats the pairs of one search.
+/// How the pipeline treats every pair of a detector (fixed when the detector is made: DetectorPlan).
 struct PipelineSettings {
   ccd::CcdFilter filter = ccd::CcdFilter::Combined;  ///< Culling without a culler.
   ccd::CcdSettings ccd;                              ///< Thickness and exactness.
   ccd::ProjectionFilterOptions projection;           ///< Directions of the projection filter.
   const PairCuller* culler = nullptr;                ///< When set: the culler, with the combined filters behind it.
+  long max_collisions = 0;  ///< With PipelineSearch::exact: the budget (CollisionBudgetExceeded beyond it).
+};
+
+/// What one search asks of the pipeline.
+struct PipelineSearch {
   bool exact = true;  ///< False: only count the candidates and the culled pairs (no exact test, no collisions).
   const BlockObserver* observer = nullptr;  ///< When set: shown every block after its exact test.
-  long max_collisions = 0;                  ///< With `exact`: the budget (CollisionBudgetExceeded beyond it).
   /// When set and not empty: called before each block; true throws DetectionCancelled.
   const std::function<bool()>* cancel = nullptr;
   /// With `exact`: search the earliest contact instead of every collision. Each survivor is tested only up to the
@@ -105,18 +111,18 @@ struct PipelineCounts {
 /// The narrow phase as a broad-phase sink (see the file comment).
 class PairPipeline final : public broadphase::CandidateSink {
  public:
-  /// A pipeline whose threads each hold a block of `block_pairs` pairs (see ccd::PairBlock).
-  explicit PairPipeline(int block_pairs);
+  /// A pipeline with `settings` whose threads each hold a block of `block_pairs` pairs (see ccd::PairBlock).
+  PairPipeline(const PipelineSettings& settings, int block_pairs);
 
   /// Collisions each chunk of a thread's list holds (1.7 MB of them).
   static constexpr std::size_t kChunkCollisions = std::size_t{1} << 14;
 
-  /// Starts a search: `bodies` (indexed by body id), their keys and the settings must stay valid until the collisions
-  /// are taken. `kept` collisions of the call are already found (a re-test's kept answer): they count in the budget.
-  void begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys, const PipelineSettings& settings, long kept);
+  /// Starts `search`: `bodies` (indexed by body id) and their keys must stay valid until the collisions are taken.
+  /// `kept` collisions of the call are already found (a re-test's kept answer): they count in the budget.
+  void begin(const std::vector<BodyFrames>& bodies, const PairKeys& keys, const PipelineSearch& search, long kept);
 
   /// Culls and tests one chunk of candidates (called by the search's threads). Throws CollisionBudgetExceeded or
-  /// DetectionCancelled to stop the search (see PipelineSettings).
+  /// DetectionCancelled to stop the search (see PipelineSearch).
   void consume(const broadphase::CandidateSet& chunk) override;
 
   /// Adds the counts of the search to `counts`.
@@ -138,7 +144,7 @@ class PairPipeline final : public broadphase::CandidateSink {
     }
   }
 
-  /// With PipelineSettings::earliest: the search's earliest hit, ties broken by kind (vertex-face first) and key; toi
+  /// With PipelineSearch::earliest: the search's earliest hit, ties broken by kind (vertex-face first) and key; toi
   /// beyond every hit (infinity) when the search found none at or before its bound.
   [[nodiscard]] KeyedCollision earliest() const;
 
@@ -158,7 +164,7 @@ class PairPipeline final : public broadphase::CandidateSink {
     std::vector<std::uint8_t> culled;                     // cull_pair_block's scratch
     CullerScratch culler;                                 // network mode: cull_with_culler's scratch
     std::vector<std::vector<KeyedCollision>> collisions;  // found, in chunks of kChunkCollisions
-    KeyedCollision earliest;  // PipelineSettings::earliest: this thread's earliest hit (toi infinity: none yet)
+    KeyedCollision earliest;  // PipelineSearch::earliest: this thread's earliest hit (toi infinity: none yet)
     PipelineCounts counts;
   };
 
@@ -168,16 +174,17 @@ class PairPipeline final : public broadphase::CandidateSink {
   void check_stop() const;
 
   void run_block(Worker& w) const;
-  // The exact test of the block's survivors [0, survivors) for PipelineSettings::earliest.
+  // The exact test of the block's survivors [0, survivors) for PipelineSearch::earliest.
   void find_earliest(Worker& w, int survivors, int filtered, ccd::CcdFilter applied) const;
   void show_block(Worker& w, int survivors) const;
 
   const std::vector<BodyFrames>* bodies_ = nullptr;
   const PairKeys* keys_ = nullptr;
-  const PipelineSettings* settings_ = nullptr;
+  const PipelineSettings settings_;
+  PipelineSearch search_;
   tbb::enumerable_thread_specific<Worker> workers_;
   mutable std::atomic<long> found_{0};  // collisions found by all threads (the kept ones included)
-  mutable std::atomic<double> earliest_toi_{0.0};  // PipelineSettings::earliest: the earliest toi found so far
+  mutable std::atomic<double> earliest_toi_{0.0};  // PipelineSearch::earliest: the earliest toi found so far
 };
 
 }  // namespace clothcd::detail

@@ -7,7 +7,7 @@
 // whatever its length. The schedule starts with a window in which the mesh moves about half an edge length, then sizes
 // each next window from the counts measured in the last two.
 
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::detail {

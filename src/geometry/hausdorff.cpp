@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "clothcd/geometry/bounding_volumes.hpp"
-#include "clothcd/geometry/primitive_distance.hpp"
+#include "geometry/primitive_distance.hpp"
 
 namespace clothcd::geometry {
 namespace {

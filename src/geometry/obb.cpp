@@ -15,7 +15,7 @@
 
 #include "clothcd/geometry/convex_hull.hpp"
 #include "clothcd/geometry/simplify.hpp"
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd.hpp"
 #include "min_area_rectangle.hpp"
 #include "power_of_two_scale.hpp"

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <limits>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd.hpp"
 
 

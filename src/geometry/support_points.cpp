@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd.hpp"
 
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "clothcd/learning/pair_classifier.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
 #include "clothcd/render/svg_chart.hpp"
 #include "learning/opennn_backend.hpp"
 

@@ -5,8 +5,8 @@
 // OpenNN draws its initial weights from the global std::rand, so training is seeded here and runs in one thread.
 #include "learning/opennn_backend.hpp"
 
-#include "clothcd/learning/pair_classifier.hpp"
-#include "learning/model_file_check.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
+#include "culling/model_file_check.hpp"
 
 #include <algorithm>
 #include <cstdlib>

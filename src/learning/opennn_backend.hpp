@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/learning/network_weights.hpp"
+#include "clothcd/culling/network_weights.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 
 namespace clothcd::learning::backend {

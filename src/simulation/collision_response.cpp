@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "clothcd/geometry/primitive_distance.hpp"
+#include "geometry/primitive_distance.hpp"
 
 namespace clothcd::simulation {
 namespace {

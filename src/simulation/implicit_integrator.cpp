@@ -4,7 +4,7 @@
 // and plain preconditioned CG applies. Pinned vertices are handled by filtering (Baraff-Witkin section 5.3).
 #include "clothcd/simulation/implicit_integrator.hpp"
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd.hpp"
 
 #include <algorithm>

@@ -19,7 +19,7 @@
 #include <cstring>
 #include <utility>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 /// Defined where the AVX2 and AVX-512 versions of the kernels are compiled in (x86-64 with GCC or Clang).

@@ -1,5 +1,5 @@
 // The run-time CPU check of the wide kernels (one CPU query per process) and the limit that caps it.
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 
 #include <atomic>
 

@@ -3,10 +3,10 @@
 
 #include <random>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/bvh.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/bvh.hpp"
+#include "broadphase/swept_boxes.hpp"
+#include "broadphase/traversal.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
 namespace clothcd::test {

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using clothcd::broadphase::build_body_topology;

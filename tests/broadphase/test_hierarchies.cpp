@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "broadphase_scenes.hpp"
-#include "clothcd/broadphase/brute_force_candidates.hpp"
-#include "clothcd/broadphase/candidates.hpp"
+#include "broadphase/brute_force_candidates.hpp"
+#include "broadphase/candidates.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
 
 using namespace clothcd;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "broadphase/leaf_pairs.hpp"
-#include "clothcd/broadphase/packed_boxes.hpp"
-#include "clothcd/simd_level.hpp"
+#include "broadphase/packed_boxes.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
 
 namespace {

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "broadphase/broadphase_scenes.hpp"
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/bvh.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/bvh.hpp"
+#include "broadphase/swept_boxes.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using namespace clothcd;

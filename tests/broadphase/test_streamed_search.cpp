@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "broadphase_scenes.hpp"
-#include "clothcd/broadphase/candidates.hpp"
+#include "broadphase/candidates.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using namespace clothcd;

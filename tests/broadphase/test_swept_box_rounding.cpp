@@ -9,7 +9,7 @@
 #include <cmath>
 #include <random>
 
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/swept_boxes.hpp"
 
 TEST_CASE("swept boxes hold each position grown by exactly half the thickness, rounded outwards",
           "[broadphase][boxes]") {

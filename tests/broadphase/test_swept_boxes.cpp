@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/swept_boxes.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include "ccd/ccd_test_support.hpp"
 #include "ccd/sampled_distance.hpp"
-#include "clothcd/geometry/closest_points.hpp"
+#include "geometry/closest_points.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;

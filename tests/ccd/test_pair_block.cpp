@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "ccd/pair_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
 

@@ -1,4 +1,4 @@
-// The shared pair measures (clothcd/ccd/pair_measures.hpp): the direction table holds the square roots the filters and
+// The shared pair measures (ccd/pair_measures.hpp): the direction table holds the square roots the filters and
 // the features computed before it existed, the signed margin keeps the per-pair tie rule, and the Bernstein
 // coefficients bound the coplanarity cubic.
 #include <catch2/catch.hpp>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <random>
 
-#include "clothcd/ccd/pair_measures.hpp"
+#include "ccd/pair_measures.hpp"
 
 namespace {
 

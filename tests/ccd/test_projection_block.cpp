@@ -11,7 +11,7 @@
 #include "ccd/projection_block.hpp"
 #include "ccd/sampled_distance.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <tuple>
 
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/cloth_over_sphere.hpp"
 

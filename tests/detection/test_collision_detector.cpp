@@ -9,10 +9,10 @@
 
 #include <tbb/global_control.h>
 
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/cloth_over_sphere.hpp"
 #include "detection/same_collisions.hpp"

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/cloth_over_sphere.hpp"

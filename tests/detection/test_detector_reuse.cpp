@@ -6,7 +6,7 @@
 #include <random>
 
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/same_collisions.hpp"
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "ccd/ccd_test_support.hpp"
-#include "clothcd/broadphase/brute_force_candidates.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/brute_force_candidates.hpp"
+#include "broadphase/swept_boxes.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"

@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "clothcd/geometry/closest_points.hpp"
+#include "geometry/closest_points.hpp"
 
 namespace {
 

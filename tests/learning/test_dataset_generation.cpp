@@ -5,10 +5,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/brute_force_candidates.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/brute_force_candidates.hpp"
+#include "broadphase/swept_boxes.hpp"
+#include "broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/simulation/scene.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "clothcd/learning/pair_dataset.hpp"
-#include "learning/pair_test_data.hpp"
+#include "culling/pair_test_data.hpp"
 
 using namespace clothcd::learning;
 

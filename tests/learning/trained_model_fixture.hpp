@@ -6,7 +6,7 @@
 #include <string>
 
 #include "clothcd/learning/network_training.hpp"
-#include "learning/pair_test_data.hpp"
+#include "culling/pair_test_data.hpp"
 #include "support/test_support.hpp"
 
 namespace clothcd::learning::test {

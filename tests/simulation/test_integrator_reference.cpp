@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <random>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "clothcd/simulation/cloth_model.hpp"
 #include "clothcd/simulation/implicit_integrator.hpp"

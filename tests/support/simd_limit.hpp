@@ -1,7 +1,7 @@
 #pragma once
 // Runs a test's code at one SIMD level: caps clothcd::simd_level() for the lifetime of the object.
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::test {
 

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// The pairs of the CCD stage in blocks: a fixed-capacity block of pairs of one kind on their way from the broad phase
-/// to the exact test, holding each pair's four vertex references, a tag the caller chooses and its start and end
-/// positions as lanes of PairLanes groups (structure of arrays), so that the block filters read them in place. A
-/// detector fills a block, culls it (cull_pair_block), runs the exact test on the survivors
+/// The pairs of the CCD stage in blocks, as a PairCuller and a BlockObserver see them: a fixed-capacity block of pairs
+/// of one kind on their way from the broad phase to the exact test, holding each pair's four vertex references, a tag
+/// the caller chooses and its start and end positions as lanes of PairLanes groups (structure of arrays), so that the
+/// block filters read them in place. A detector fills a block, culls it, runs the exact test on the survivors
 /// (continuous_collision_after_filter on query(i)) and reuses it, so the pairs of a step are never all held at once.
 #include <array>
 #include <cstdint>
@@ -94,14 +94,5 @@ class PairBlock {
   std::vector<std::uint64_t> tags_;
   std::vector<PairLanes> groups_;
 };
-
-/// The filters of the detector's culling modes on pairs [0, count) of `block`, as the block filters run them: the
-/// projection filter (with primitive normals: their pass on every pair first, the other directions on the survivors)
-/// and, in the Combined mode at thickness 0, the non-penetration filter on what the projection filter leaves;
-/// NonPenetration runs the per-pair filter, None culls nothing. The survivors are compacted to the front of the block
-/// (PairBlock::compact); returns how many. `culled` is scratch (resized as needed). The
-/// filters run on the widest instruction set the CPU has; every one gives the same verdicts.
-int cull_pair_block(PairBlock& block, int count, CcdFilter filter, const CcdSettings& settings,
-                    const ProjectionFilterOptions& options, std::vector<std::uint8_t>& culled);
 
 }  // namespace clothcd::ccd

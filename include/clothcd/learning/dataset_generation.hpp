@@ -11,7 +11,7 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/pair_features.hpp"
 
 namespace clothcd::learning {
 

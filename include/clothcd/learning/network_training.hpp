@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "clothcd/learning/classification_metrics.hpp"
-#include "clothcd/learning/model_card.hpp"
+#include "clothcd/culling/model_card.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 
 namespace clothcd::learning {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/pair_features.hpp"
 
 namespace clothcd::learning {
 

@@ -7,7 +7,7 @@
 #include <cstddef>
 
 #include "clothcd/learning/pair_dataset.hpp"
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/pair_features.hpp"
 
 namespace clothcd::learning {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
+#include "broadphase/body_topology.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 

@@ -5,8 +5,8 @@
 /// pairs, with the same rules: pairs sharing a vertex are skipped inside a body, and each vertex is taken once, from
 /// the triangle that owns it.
 
-#include "clothcd/broadphase/candidates.hpp"
-#include "clothcd/broadphase/traversal.hpp"
+#include "broadphase/candidates.hpp"
+#include "broadphase/traversal.hpp"
 
 namespace clothcd::broadphase {
 

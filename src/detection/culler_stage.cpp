@@ -1,9 +1,10 @@
-// Network mode's culling of a block (see clothcd/detection/pair_culler.hpp): the culler's verdicts decide which pairs
+// Network mode's culling of a block (see detection/culler_stage.hpp): the culler's verdicts decide which pairs
 // skip the combined filters; the filters confirm every drop.
-#include "clothcd/detection/pair_culler.hpp"
+#include "detection/culler_stage.hpp"
 
 #include <utility>
 
+#include "ccd/pair_block.hpp"
 #include "parallel_loop.hpp"
 
 namespace clothcd {

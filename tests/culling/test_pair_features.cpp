@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include "clothcd/learning/pair_features.hpp"
-#include "learning/pair_test_data.hpp"
+#include "clothcd/culling/pair_features.hpp"
+#include "culling/pair_test_data.hpp"
 
 using namespace clothcd::learning;
 using clothcd::PairKind;

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
 #include "support/test_support.hpp"

@@ -3,7 +3,7 @@
 /// Closest points between a point and a triangle and between two segments, in double precision, robust to degenerate
 /// (zero-area, zero-length, parallel) primitives, with the contact parameters: the CCD's thickness test uses them.
 /// The Hausdorff measure and the simulation use Ericson's Voronoi-region tests
-/// (clothcd/geometry/primitive_distance.hpp).
+/// (geometry/primitive_distance.hpp).
 #include <array>
 
 #include <Eigen/Dense>

@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "learning/cube_root.hpp"
+#include "culling/cube_root.hpp"
 
 using clothcd::learning::detail::cube_root;
 

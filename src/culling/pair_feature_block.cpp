@@ -1,9 +1,9 @@
 // Pair features in blocks (see pair_feature_block.hpp). Every expression below is the per-pair code's
 // (pair_features.cpp) written lane by lane: the same operands, the same association, Eigen's order for its
 // expressions (a 3-vector dot product or squared norm is (x0 y0 + x1 y1) + x2 y2), and the measures the filters share
-// (clothcd/ccd/pair_measures.hpp: eq. 10's directions, the Bernstein coefficients, the signed margins) from the same
+// (ccd/pair_measures.hpp: eq. 10's directions, the Bernstein coefficients, the signed margins) from the same
 // templates as the per-pair code.
-#include "learning/pair_feature_block.hpp"
+#include "culling/pair_feature_block.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,9 +12,9 @@
 #include <limits>
 #include <utility>
 
-#include "clothcd/ccd/pair_measures.hpp"
-#include "clothcd/simd_level.hpp"
-#include "learning/cube_root.hpp"
+#include "ccd/pair_measures.hpp"
+#include "support/simd_level.hpp"
+#include "culling/cube_root.hpp"
 #include "support/simd.hpp"
 
 namespace clothcd::learning::detail {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/simd_level.hpp"
-#include "clothcd/learning/pair_classifier.hpp"
+#include "support/simd_level.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
 #include "learning/opennn_backend.hpp"
 #include "learning/trained_model_fixture.hpp"
 #include "support/simd_limit.hpp"

@@ -7,8 +7,8 @@
 #include <cstddef>
 
 #include "clothcd/ccd/pair_block.hpp"
-#include "clothcd/learning/pair_features.hpp"
-#include "clothcd/simd_level.hpp"
+#include "clothcd/culling/pair_features.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::learning::detail {
 

@@ -1,5 +1,5 @@
 // Shape and finiteness checks of exported network weights (the runtime refuses NaN weights or broken layer chains).
-#include "clothcd/learning/network_weights.hpp"
+#include "clothcd/culling/network_weights.hpp"
 
 #include <cmath>
 #include <stdexcept>

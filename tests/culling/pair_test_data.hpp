@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "clothcd/learning/pair_dataset.hpp"
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/pair_features.hpp"
 #include "clothcd/learning/random_pairs.hpp"
 
 namespace clothcd::learning::test {

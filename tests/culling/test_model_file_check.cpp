@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "learning/model_file_check.hpp"
+#include "culling/model_file_check.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // weights, so the core library parses the file itself with pugixml. The layout read here is OpenNN's: per perceptron
 // layer, its synaptic weights as an inputs x neurons matrix in column-major order, then its biases; a test checks that
 // the weights equal the ones OpenNN itself exports from the same file.
-#include "clothcd/learning/network_weights.hpp"
+#include "clothcd/culling/network_weights.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -11,8 +11,8 @@
 
 #include <pugixml.hpp>
 
-#include "clothcd/learning/pair_classifier.hpp"
-#include "learning/model_file_check.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
+#include "culling/model_file_check.hpp"
 
 namespace clothcd::learning {
 namespace {

@@ -3,11 +3,11 @@
 /// Primitive data in structure-of-arrays layout for testing one primitive against four or eight at a time:
 /// single-precision copies of swept boxes rounded outwards, and the primitives' vertex indices. The box copies only
 /// pre-select: a pair they pass is confirmed on the double-precision boxes, so results are those of the FlatBox tests
-/// exactly. The lane tests themselves are internal to the library (its vector layer; see clothcd/simd_level.hpp).
+/// exactly. The lane tests themselves are internal to the library (its vector layer; see support/simd_level.hpp).
 
 #include <vector>
 
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/swept_boxes.hpp"
 
 namespace clothcd::broadphase {
 

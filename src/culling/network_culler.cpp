@@ -2,7 +2,7 @@
 // in front of the exact test). Our safety rule keeps the filters behind every pair the network would remove, so the
 // network decides only which pairs may skip the filters (detection's cull_with_culler applies the rule); features and
 // inference run block by block, each thread with its own reused structure-of-arrays batch.
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 
 #include <dlfcn.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -14,8 +14,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "clothcd/simd_level.hpp"
-#include "learning/pair_feature_block.hpp"
+#include "support/simd_level.hpp"
+#include "culling/pair_feature_block.hpp"
+#include "detection/culler_stage.hpp"
 
 namespace clothcd::learning {
 namespace {

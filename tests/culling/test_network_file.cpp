@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/learning/network_culler.hpp"
-#include "clothcd/learning/network_weights.hpp"
-#include "clothcd/learning/pair_classifier.hpp"
+#include "clothcd/culling/network_culler.hpp"
+#include "clothcd/culling/network_weights.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
 #include "learning/opennn_backend.hpp"
 
 using namespace clothcd::learning;

@@ -2,14 +2,14 @@
 // probability compared with the operating point. The forward pass runs over blocks of rows in structure-of-arrays
 // form (inner loops over rows, so the compiler vectorizes them) and performs each neuron's sum in OpenNN's order
 // (inputs in order, then the bias), so it reproduces OpenNN's calculate_outputs to the last bit on the same machine.
-#include "clothcd/learning/pair_classifier.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
-#include "clothcd/simd_level.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd.hpp"
 
 namespace clothcd::learning {

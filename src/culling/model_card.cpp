@@ -1,6 +1,6 @@
 // Model card I/O: a small JSON file beside OpenNN's XML (features, dropped columns, data set, neurons, operating point,
 // metrics).
-#include "clothcd/learning/model_card.hpp"
+#include "clothcd/culling/model_card.hpp"
 
 #include <cmath>
 #include <cstdio>

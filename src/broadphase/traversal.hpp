@@ -10,10 +10,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/bvh.hpp"
-#include "clothcd/broadphase/candidates.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/bvh.hpp"
+#include "broadphase/candidates.hpp"
+#include "broadphase/swept_boxes.hpp"
 
 namespace clothcd::broadphase {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/learning/model_card.hpp"
-#include "clothcd/learning/network_weights.hpp"
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/model_card.hpp"
+#include "clothcd/culling/network_weights.hpp"
+#include "clothcd/culling/pair_features.hpp"
 
 namespace clothcd::learning {
 

@@ -3,7 +3,7 @@
 /// Closest points and distances of the primitives of a triangle mesh by Ericson's Voronoi-region tests (C. Ericson,
 /// "Real-Time Collision Detection", 5.1.5 closest point on a triangle, 5.1.9 closest points of two segments): the
 /// Hausdorff measure and the simulation's distances use them. The CCD's thickness test has its own closest points
-/// (clothcd/geometry/closest_points.hpp), which also give the contact parameters of degenerate primitives.
+/// (geometry/closest_points.hpp), which also give the contact parameters of degenerate primitives.
 #include <Eigen/Dense>
 
 namespace clothcd::geometry {

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "clothcd/ccd/pair_block.hpp"
-#include "clothcd/learning/pair_features.hpp"
-#include "clothcd/simd_level.hpp"
-#include "learning/pair_feature_block.hpp"
-#include "learning/pair_test_data.hpp"
+#include "clothcd/culling/pair_features.hpp"
+#include "support/simd_level.hpp"
+#include "culling/pair_feature_block.hpp"
+#include "culling/pair_test_data.hpp"
 
 using namespace clothcd::learning;
 using clothcd::PairKind;

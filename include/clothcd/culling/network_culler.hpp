@@ -15,8 +15,8 @@
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/detection/pair_culler.hpp"
-#include "clothcd/learning/pair_classifier.hpp"
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/pair_classifier.hpp"
+#include "clothcd/culling/pair_features.hpp"
 
 namespace clothcd::learning {
 

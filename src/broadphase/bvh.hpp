@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "clothcd/broadphase/body_topology.hpp"
-#include "clothcd/broadphase/packed_boxes.hpp"
-#include "clothcd/broadphase/swept_boxes.hpp"
+#include "broadphase/body_topology.hpp"
+#include "broadphase/packed_boxes.hpp"
+#include "broadphase/swept_boxes.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 

@@ -6,7 +6,7 @@
 //   between the two primitives at t = 0 and t = 1 all of one strict sign mean the projections never overlap.
 // Each filter test becomes a signed margin (positive exactly when the filter removes the pair), scaled by the pair
 // size L = diagonal of the box around the eight positions; datasets/README.md documents every feature.
-#include "clothcd/learning/pair_features.hpp"
+#include "clothcd/culling/pair_features.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,9 +15,9 @@
 
 #include <Eigen/Geometry>
 
-#include "clothcd/ccd/pair_measures.hpp"
-#include "learning/cube_root.hpp"
-#include "learning/pair_feature_block.hpp"
+#include "ccd/pair_measures.hpp"
+#include "culling/cube_root.hpp"
+#include "culling/pair_feature_block.hpp"
 
 namespace clothcd::learning {
 namespace {

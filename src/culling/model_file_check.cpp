@@ -1,7 +1,7 @@
 // Nesting depth by a linear scan: comments, CDATA sections, declarations and processing instructions are skipped,
 // closing tags go up a level, opening tags that do not close themselves go down one (quoted attribute values may hold
 // '>'). Anything the scan cannot follow (an unterminated tag) is left to the parser's own error.
-#include "learning/model_file_check.hpp"
+#include "culling/model_file_check.hpp"
 
 #include <fstream>
 #include <iterator>
