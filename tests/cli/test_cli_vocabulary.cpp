@@ -13,6 +13,7 @@
 
 using clothcd::test::run_cli;
 using clothcd::test::TempDir;
+using clothcd::test::write_file;
 
 namespace {
 
@@ -125,6 +126,43 @@ TEST_CASE("the shared options have one spelling, and the old ones stay hidden", 
   const auto needs = run_cli("simulate --scene box --network-model m --out '" + (dir / "sim").string() + "'");
   CHECK(needs.exit_code == 1);
   CHECK_THAT(needs.output, Catch::Contains("--network needs --filter network"));
+}
+
+TEST_CASE("the old --exact of detect and ccd is a hidden no-op, refused with --approximate", "[cli]") {
+  TempDir dir;
+  clothcd::TriangleMesh start = clothcd::make_grid(4, 4);
+  clothcd::TriangleMesh end = start;
+  end.vertices.col(2).array() -= 0.5;
+  end.vertices(5, 2) += 1.0;  // one vertex rises through its neighbours' faces
+  clothcd::save_mesh(start, dir / "t0.ply");
+  clothcd::save_mesh(end, dir / "t1.ply");
+  std::filesystem::create_directories(dir / "queries/vertex-face");
+  // The vertex at (1/4, 1/4) drops from z = 1 to z = -1 through the unit triangle.
+  write_file(dir / "queries/vertex-face/a.csv",
+             "1,4,1,4,1,1,1\n0,1,0,1,0,1,1\n1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n1,4,1,4,-1,1,1\n0,1,0,1,0,1,1\n"
+             "1,1,0,1,0,1,1\n0,1,1,1,0,1,1\n");
+  const std::string detect = "detect '" + (dir / "t0.ply").string() + "' '" + (dir / "t1.ply").string() + "'";
+  const std::string ccd = "ccd '" + (dir / "queries").string() + "'";
+  for (const std::string& command : {detect, ccd}) {
+    INFO(command);
+    const auto help = run_cli(command + " --help");
+    CHECK_THAT(help.output, Catch::Contains("--approximate") && Catch::Contains("--exact, which asked for it"));
+    CHECK(help.output.find("  --exact ") == std::string::npos);
+    const auto plain = run_cli(command + " --json", true);
+    const auto exact = run_cli(command + " --exact --json", true);
+    REQUIRE(plain.exit_code == 0);
+    REQUIRE(exact.exit_code == 0);
+    const auto plain_report = nlohmann::json::parse(plain.output);
+    const auto exact_report = nlohmann::json::parse(exact.output);
+    CHECK(exact_report["exact"] == true);
+    for (const char* key : {"vertex_face", "edge_edge", "colliding"}) {
+      CHECK(exact_report.contains(key) == plain_report.contains(key));
+      if (plain_report.contains(key)) CHECK(exact_report[key] == plain_report[key]);
+    }
+    const auto both = run_cli(command + " --exact --approximate");
+    CHECK(both.exit_code != 0);
+    CHECK_THAT(both.output, Catch::Contains("excludes"));
+  }
 }
 
 TEST_CASE("output paths are checked before the work starts", "[cli][errors]") {

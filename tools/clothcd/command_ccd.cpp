@@ -16,7 +16,7 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "commands.hpp"
 #include "shared_options.hpp"
 
@@ -288,9 +288,9 @@ void add_ccd_command(CLI::App& app) {
   command->add_option("--thickness", options->thickness, "Minimum separation (>= 0)")
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()))
       ->capture_default_str();
-  command->add_flag("--approximate", options->approximate,
-                    "Thickness 0 only: report the queries the floating-point fast tier leaves undecided as conservative hits "
-                    "(a few false positives) instead of deciding them exactly");
+  add_approximate_flag(*command, options->approximate,
+                       "Thickness 0 only: report the queries the floating-point fast tier leaves undecided as "
+                       "conservative hits (a few false positives) instead of deciding them exactly");
   add_json_flag(*command, options->json);
   command->add_option("--per-query", options->per_query, "Write one CSV line per query to this file");
   command->callback([options] { run_ccd(*options); });

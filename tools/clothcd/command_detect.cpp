@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "commands.hpp"
 #include "output_paths.hpp"
@@ -286,9 +286,9 @@ void add_detect_command(CLI::App& app) {
   command->add_option("T1_MESH", o->t1_path, "Same mesh (same faces) at the end of the step")->required();
   command->add_option("--thickness", o->thickness, "Minimum separation, in mesh units")
       ->check(finite_number(0.0, std::numeric_limits<double>::infinity()));
-  command->add_flag("--approximate", o->approximate,
-                    "Thickness 0 only: report the pairs the floating-point fast tier leaves undecided as conservative hits "
-                    "(toi a lower bound) instead of deciding them exactly");
+  add_approximate_flag(*command, o->approximate,
+                       "Thickness 0 only: report the pairs the floating-point fast tier leaves undecided as "
+                       "conservative hits (toi a lower bound) instead of deciding them exactly");
   add_bvh_option(*command, o->bvh);
   add_filter_option(*command, o->filter);
   add_network_option(*command, o->network, "--model");

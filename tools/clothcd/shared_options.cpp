@@ -51,6 +51,16 @@ void add_bvh_option(CLI::App& command, std::string& bvh) {
 
 HierarchyKind hierarchy_named(const std::string& bvh) { return kHierarchies.at(bvh); }
 
+void add_approximate_flag(CLI::App& command, bool& approximate, const std::string& help) {
+  CLI::Option* approximate_flag = command.add_flag(
+      "--approximate", approximate,
+      help + ". Deciding exactly is the default: --exact, which asked for it in earlier releases, is still accepted "
+             "and does nothing");
+  command.add_flag("--exact", "old opt-in to the exact decisions, now the default (no effect)")
+      ->group("")
+      ->excludes(approximate_flag);
+}
+
 void check_approximate_needs_zero_thickness(bool approximate, double thickness) {
   if (approximate && thickness > 0.0)
     throw std::invalid_argument(

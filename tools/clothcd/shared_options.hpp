@@ -37,6 +37,11 @@ void add_bvh_option(CLI::App& command, std::string& bvh);
 /// The hierarchy of a --bvh name.
 [[nodiscard]] HierarchyKind hierarchy_named(const std::string& bvh);
 
+/// Adds `--approximate` (help text `help`, to which the note on --exact is added) writing into `approximate`, and the
+/// hidden `--exact` of earlier releases, which asked for what is now the default: accepted as a no-op for one release,
+/// and refused together with --approximate.
+void add_approximate_flag(CLI::App& command, bool& approximate, const std::string& help);
+
 /// Throws std::invalid_argument, saying why, when --approximate comes with a thickness above 0.
 void check_approximate_needs_zero_thickness(bool approximate, double thickness);
 
