@@ -3,13 +3,16 @@
     python examples/python/drop_on_sphere.py [OUT.png]     (after `pip install .`)
 """
 
-import sys
+import argparse
 
 import numpy as np
 
 import clothcd
 
-out = sys.argv[1] if len(sys.argv) > 1 else "drop_on_sphere.png"
+parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("out", nargs="?", default="drop_on_sphere.png", metavar="OUT.png",
+                    help="the picture of the last frame (default: %(default)s)")
+out = parser.parse_args().out
 sphere = clothcd.make_uv_sphere(0.5, 32, 16)
 cloth_vertices, cloth_faces = clothcd.make_paper_cloth("A", 1.6)
 cloth_vertices = cloth_vertices + [0.0, 0.7, 0.0]  # above the sphere

@@ -8,14 +8,19 @@ Writes a picture of the last frame.
     python examples/python/line_search.py [OUT.png] [STEPS]     (after `pip install .`)
 """
 
-import sys
+import argparse
 
 import numpy as np
 
 import clothcd
 
-out = sys.argv[1] if len(sys.argv) > 1 else "line_search.png"
-steps = int(sys.argv[2]) if len(sys.argv) > 2 else 500
+parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("out", nargs="?", default="line_search.png", metavar="OUT.png",
+                    help="the picture of the last frame (default: %(default)s)")
+parser.add_argument("steps", nargs="?", type=int, default=500, metavar="STEPS",
+                    help="the number of steps (default: %(default)s)")
+args = parser.parse_args()
+out, steps = args.out, args.steps
 dt, gravity, fraction = 0.01, np.array([0.0, -9.81, 0.0]), 0.8
 
 sphere = clothcd.make_uv_sphere(0.5, 32, 16)

@@ -11,10 +11,14 @@ VERTEX_FACE = 0
 """Collisions.kind of a vertex-face pair: vertices[0] is the vertex, vertices[1:4] the triangle."""
 EDGE_EDGE = 1
 """Collisions.kind of an edge-edge pair: vertices[0:2] is edge a, vertices[2:4] edge b."""
+_KIND_NAMES = {VERTEX_FACE: "vertex_face", EDGE_EDGE: "edge_edge"}
+"""The name of each kind, as the clothcd program's JSON names its collision lists."""
 
 
 class Collision(NamedTuple):
-    """One collision, as iterating over Collisions yields it (Python numbers; the fields of Collisions, one row)."""
+    """One collision, as iterating over Collisions yields it (Python numbers; the fields of Collisions, one row).
+
+    repr() names the kind: Collision(kind=vertex_face, ...) or Collision(kind=edge_edge, ...)."""
 
     kind: int
     """VERTEX_FACE (0) or EDGE_EDGE (1)."""
@@ -30,6 +34,12 @@ class Collision(NamedTuple):
     """Unit contact normal at toi, from the second primitive to the first."""
     conservative: bool
     """Reported because the CCD could not decide the pair."""
+
+    def __repr__(self) -> str:
+        """The fields as a NamedTuple shows them, the kind by its name (a kind without one as its number)."""
+        fields = [f"kind={_KIND_NAMES.get(self.kind, self.kind)}"]
+        fields += [f"{name}={value!r}" for name, value in zip(self._fields[1:], self[1:])]
+        return f"Collision({', '.join(fields)})"
 
 
 class EarliestImpact(NamedTuple):

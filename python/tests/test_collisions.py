@@ -1,4 +1,5 @@
-"""The Collisions result: len(), one record per collision when iterated, a one-line repr() and flat columns."""
+"""The Collisions result: len(), one record per collision when iterated (its repr() naming the kind), a one-line repr()
+and flat columns."""
 
 import numpy as np
 
@@ -40,6 +41,14 @@ def test_iteration_yields_one_record_per_row():
         clothcd.Collision(clothcd.EDGE_EDGE, (0, 0, 0, 0), (3, 4, 7, 8), 0.25, (0.3, 0.4), (1.0, 0.0, 0.0), True),
     ]
     assert all(type(value) in (int, float, bool, tuple) for record in records for value in record)
+
+
+def test_a_record_s_repr_names_its_kind():
+    vertex_face, edge_edge = two_collisions()
+    assert repr(vertex_face) == ("Collision(kind=vertex_face, bodies=(0, 1, 1, 1), vertices=(5, 0, 1, 2), toi=0.75, "
+                                 "parameters=(0.1, 0.2), normal=(0.0, 1.0, 0.0), conservative=False)")
+    assert repr(edge_edge) == ("Collision(kind=edge_edge, bodies=(0, 0, 0, 0), vertices=(3, 4, 7, 8), toi=0.25, "
+                               "parameters=(0.3, 0.4), normal=(1.0, 0.0, 0.0), conservative=True)")
 
 
 def test_iteration_matches_the_arrays_of_a_detected_step():
