@@ -14,8 +14,8 @@
 #include "../suite/charts.hpp"
 #include "../suite/draped_frames.hpp"
 #include "../suite/fcl_peer.hpp"
-#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/simulation/simulator.hpp"
 
 namespace clothcd::bench {

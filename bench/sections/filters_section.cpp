@@ -15,10 +15,10 @@
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/culling/network_culler.hpp"
-#include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/culling/model_card.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/culling/pair_classifier.hpp"
+#include "clothcd/learning/dataset_generation.hpp"
 
 namespace clothcd::bench {
 namespace {

@@ -11,8 +11,8 @@
 #include "../suite/bench_section.hpp"
 #include "../suite/bench_util.hpp"
 #include "../suite/charts.hpp"
-#include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/culling/model_card.hpp"
+#include "clothcd/learning/dataset_generation.hpp"
 #include "clothcd/learning/model_evaluation.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 

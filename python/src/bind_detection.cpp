@@ -14,8 +14,8 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 
 namespace clothcd::python {
 namespace {

@@ -9,8 +9,8 @@
 #include <cstring>
 #include <limits>
 
-#include "support/simd_level.hpp"
 #include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::broadphase {
 namespace {

@@ -17,9 +17,9 @@
 #include <cmath>
 #include <limits>
 
+#include "ccd/pair_measures.hpp"
 #include "ccd/projection_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "ccd/pair_measures.hpp"
 
 namespace clothcd::ccd {
 

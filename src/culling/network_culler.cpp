@@ -14,9 +14,9 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "support/simd_level.hpp"
 #include "culling/pair_feature_block.hpp"
 #include "detection/culler_stage.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::learning {
 namespace {

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "support/simd_level.hpp"
 #include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::learning {
 namespace {

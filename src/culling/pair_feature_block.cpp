@@ -13,9 +13,9 @@
 #include <utility>
 
 #include "ccd/pair_measures.hpp"
-#include "support/simd_level.hpp"
 #include "culling/cube_root.hpp"
 #include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 namespace clothcd::learning::detail {
 namespace {

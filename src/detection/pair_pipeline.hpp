@@ -17,14 +17,14 @@
 
 #include "broadphase/body_topology.hpp"
 #include "broadphase/traversal.hpp"
+#include "ccd/pair_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/pair_block.hpp"
 #include "clothcd/detection/block_observer.hpp"
 #include "clothcd/detection/collision.hpp"
-#include "ccd/pair_block.hpp"
 #include "clothcd/detection/pair_culler.hpp"
-#include "detection/culler_stage.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
+#include "detection/culler_stage.hpp"
 
 namespace clothcd::detail {
 

@@ -15,11 +15,11 @@
 
 #include "clothcd/geometry/convex_hull.hpp"
 #include "clothcd/geometry/simplify.hpp"
-#include "support/simd_level.hpp"
-#include "support/simd.hpp"
 #include "min_area_rectangle.hpp"
 #include "power_of_two_scale.hpp"
 #include "slab_extremes.hpp"
+#include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 
 namespace clothcd::geometry {

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <limits>
 
-#include "support/simd_level.hpp"
 #include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 
 namespace clothcd::geometry::detail {

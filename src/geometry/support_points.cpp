@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "support/simd_level.hpp"
 #include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 
 namespace clothcd::geometry {

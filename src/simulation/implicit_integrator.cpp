@@ -4,8 +4,8 @@
 // and plain preconditioned CG applies. Pinned vertices are handled by filtering (Baraff-Witkin section 5.3).
 #include "clothcd/simulation/implicit_integrator.hpp"
 
-#include "support/simd_level.hpp"
 #include "support/simd.hpp"
+#include "support/simd_level.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/primitive_distance.hpp"
 #include "clothcd/simulation/intersection_check.hpp"
+#include "geometry/primitive_distance.hpp"
 
 namespace clothcd::simulation {
 namespace {

@@ -9,11 +9,11 @@
 #include <map>
 #include <sstream>
 
-#include "support/simd_level.hpp"
 #include "ccd/ccd_test_support.hpp"
 #include "ccd/decimal_touches.hpp"
 #include "ccd/projection_block.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "support/simd_level.hpp"
 
 using clothcd::test::decimal_thick_touches;
 using clothcd::test::decimal_touches;

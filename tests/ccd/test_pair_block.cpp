@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
-#include "support/simd_level.hpp"
 #include "ccd/pair_block.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "support/simd_level.hpp"
 
 namespace {
 

@@ -9,8 +9,8 @@
 
 #include <Eigen/Geometry>
 
-#include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/culling/pair_features.hpp"
+#include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/learning/random_pairs.hpp"
 
 namespace clothcd::learning::test {

@@ -14,9 +14,9 @@
 
 #include "../broadphase/broadphase_scenes.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/detection/pair_culler.hpp"
-#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "support/test_support.hpp"
 

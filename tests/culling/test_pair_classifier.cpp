@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "support/simd_level.hpp"
 #include "clothcd/culling/pair_classifier.hpp"
 #include "learning/opennn_backend.hpp"
 #include "learning/trained_model_fixture.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
 
 using namespace clothcd::learning;

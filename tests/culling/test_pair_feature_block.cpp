@@ -11,9 +11,9 @@
 
 #include "clothcd/ccd/pair_block.hpp"
 #include "clothcd/culling/pair_features.hpp"
-#include "support/simd_level.hpp"
 #include "culling/pair_feature_block.hpp"
 #include "culling/pair_test_data.hpp"
+#include "support/simd_level.hpp"
 
 using namespace clothcd::learning;
 using clothcd::PairKind;

@@ -9,8 +9,8 @@
 #include <set>
 #include <tuple>
 
-#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/cloth_over_sphere.hpp"
 

@@ -11,8 +11,8 @@
 
 #include "broadphase/body_topology.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/cloth_over_sphere.hpp"
 #include "detection/same_collisions.hpp"

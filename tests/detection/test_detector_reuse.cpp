@@ -5,8 +5,8 @@
 
 #include <random>
 
-#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "detection/same_collisions.hpp"
 

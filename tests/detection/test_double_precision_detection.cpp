@@ -9,8 +9,8 @@
 #include <cstring>
 #include <set>
 
-#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/culling/network_culler.hpp"
+#include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
 #include "support/test_support.hpp"

@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "ccd/ccd_test_support.hpp"
 #include "broadphase/brute_force_candidates.hpp"
 #include "broadphase/swept_boxes.hpp"
+#include "ccd/ccd_test_support.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"

@@ -11,9 +11,9 @@
 #include "broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/learning/dataset_generation.hpp"
+#include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/simulation/scene.hpp"
 #include "clothcd/simulation/simulator.hpp"
-#include "clothcd/learning/pair_dataset.hpp"
 #include "support/test_support.hpp"
 
 using namespace clothcd;

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <random>
 
-#include "support/simd_level.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "clothcd/simulation/cloth_model.hpp"
 #include "clothcd/simulation/implicit_integrator.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
 
 using namespace clothcd;

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "support/simd_level.hpp"
 #include "clothcd/geometry/obb.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
+#include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
 
 using namespace clothcd;

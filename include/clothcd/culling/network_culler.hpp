@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/detection/pair_culler.hpp"
 #include "clothcd/culling/pair_classifier.hpp"
 #include "clothcd/culling/pair_features.hpp"
+#include "clothcd/detection/collision_detector.hpp"
+#include "clothcd/detection/pair_culler.hpp"
 
 namespace clothcd::learning {
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/culling/pair_features.hpp"
+#include "clothcd/learning/pair_dataset.hpp"
 
 namespace clothcd::learning {
 

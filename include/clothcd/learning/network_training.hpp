@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "clothcd/learning/classification_metrics.hpp"
 #include "clothcd/culling/model_card.hpp"
+#include "clothcd/learning/classification_metrics.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 
 namespace clothcd::learning {

@@ -6,8 +6,8 @@
 
 #include <cstddef>
 
-#include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/culling/pair_features.hpp"
+#include "clothcd/learning/pair_dataset.hpp"
 
 namespace clothcd::learning {
 
