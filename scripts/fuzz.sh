@@ -17,7 +17,7 @@ cmake -S fuzz -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TY
 cmake --build "$build" --parallel "$(nproc)"
 
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-targets=(ply_reader obj_reader off_reader stl_reader mesh_frames query_file model_loader)
+targets=(ply_reader obj_reader off_reader stl_reader mesh_frames query_file model_loader tar_gz_member)
 summary=()
 failed=0
 for target in "${targets[@]}"; do

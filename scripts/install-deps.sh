@@ -12,7 +12,7 @@ packages=(
   nlohmann-json3-dev   # JSON: model cards, the --json reports of the clothcd program
   libgmp-dev           # exact rational arithmetic: the CCD reference and its uncertain-case fallback
   libtbb-dev           # parallel broad phase and batched culling on both cores
-  libarchive-dev       # extracting the obstacle models from libcgal-demo's data archive
+  zlib1g-dev           # reading libcgal-demo's data archive (a .tar.gz) for the obstacle models
   libstb-dev           # PNG pictures and charts
   libcgal-demo         # obstacle models: rabbit, dinosaur, human, cow, sphere, cube
   assimp-testmodels    # obstacle models: HUMAN.blend, duck.dae (the bird)

@@ -1,19 +1,16 @@
 // The paper's obstacle models, copied from Debian packages (or generated) into a cache folder with an index.
 #include "clothcd/mesh/model_catalog.hpp"
 
-#include <archive.h>
-#include <archive_entry.h>
-
 #include <unistd.h>
 
 #include <atomic>
 #include <cstdlib>
 #include <fstream>
-#include <memory>
 #include <stdexcept>
 
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
+#include "mesh/tar_gz_member.hpp"
 
 namespace clothcd {
 namespace {
@@ -49,26 +46,17 @@ void write_into_place(const fs::path& target, const Write& write) {
 
 /// Extracts one member of a .tar.gz into `target`; false when the member is not in the archive.
 bool extract_member(const fs::path& archive_path, const std::string& member, const fs::path& target) {
-  std::unique_ptr<archive, decltype(&archive_read_free)> reader(archive_read_new(), archive_read_free);
-  archive_read_support_filter_all(reader.get());
-  archive_read_support_format_all(reader.get());
-  if (archive_read_open_filename(reader.get(), archive_path.c_str(), 1 << 16) != ARCHIVE_OK) {
-    throw std::runtime_error(archive_path.string() + ": " + archive_error_string(reader.get()));
-  }
-  archive_entry* entry = nullptr;
-  while (archive_read_next_header(reader.get(), &entry) == ARCHIVE_OK) {
-    if (member != archive_entry_pathname(entry)) continue;
-    write_into_place(target, [&](const fs::path& partial) {
-      std::ofstream out(partial, std::ios::binary);
-      char buffer[1 << 16];
-      la_ssize_t got = 0;
-      while ((got = archive_read_data(reader.get(), buffer, sizeof buffer)) > 0) out.write(buffer, got);
-      out.close();
-      if (got < 0 || !out) throw std::runtime_error(archive_path.string() + ": cannot extract " + member);
-    });
-    return true;
-  }
-  return false;
+  detail::TarGzReader archive(archive_path);
+  if (!archive.find(member)) return false;
+  write_into_place(target, [&](const fs::path& partial) {
+    std::ofstream out(partial, std::ios::binary);
+    archive.copy_to(out);
+    out.close();
+    if (!out) {
+      throw std::runtime_error(archive_path.string() + ": cannot extract " + member + " into " + partial.string());
+    }
+  });
+  return true;
 }
 
 void generate_into(const std::string& name, const fs::path& target) {
