@@ -9,11 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <fstream>
-#include <map>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,12 +48,6 @@ struct Scene {
   bool generated = false;
 };
 
-// The peer's result on one step at one thread count.
-struct PeerRun {
-  long candidates = 0;
-  double ms = 0;
-};
-
 // Everything measured on one step.
 struct SceneResult {
   Scene scene;
@@ -68,7 +58,7 @@ struct SceneResult {
   bool same_collisions = true;  // every run of a mode, one CPU or two, gave that mode's digest
   std::optional<TruthCheck> truth, approximate_truth;
   FalseReportCheck false_reports, approximate_false_reports;  // of one / approximate
-  std::optional<PeerRun> peer_one, peer_two;
+  std::optional<PeerCandidateSearch> peer_one, peer_two;
   // Best earliest-impact search (clothcd detect --earliest, new default) on one and on two CPUs.
   std::optional<EarliestRun> earliest_one, earliest_two;
   std::optional<PeerNarrowPhase> peer_narrow;
@@ -87,27 +77,6 @@ std::vector<ThrownBodiesSpec> generated_specs(const BenchContext& context) {
   return specs;
 }
 
-// The frames as `clothcd detect` reads them, written for the peer (format in bench/peers/ipctk_candidates.py).
-void write_peer_scene(const MeshFrames& frames, const fs::path& path) {
-  std::ofstream out(path, std::ios::binary);
-  const std::int64_t counts[2] = {frames.start.vertex_count(), frames.start.face_count()};
-  out.write(reinterpret_cast<const char*>(counts), sizeof counts);
-  const auto bytes = [](Eigen::Index values) { return static_cast<std::streamsize>(values * 8); };
-  out.write(reinterpret_cast<const char*>(frames.start.vertices.data()), bytes(frames.start.vertices.size()));
-  out.write(reinterpret_cast<const char*>(frames.end.data()), bytes(frames.end.size()));
-  out.write(reinterpret_cast<const char*>(frames.start.faces.data()), frames.start.faces.size() * 4);
-  if (!out) throw std::runtime_error(path.string() + ": write failed");
-}
-
-PeerRun run_peer(const fs::path& python, const fs::path& script, const fs::path& scene, int threads) {
-  const ChildRun run = run_child({python.string(), script.string(), scene.string(), "--threads",
-                                  std::to_string(threads), "--repeats", "1"}, threads);
-  std::map<std::string, double> values = peer_values(run.output);
-  if (run.exit_code != 0 || !values.count("candidates") || !values.count("best_ms"))
-    throw std::runtime_error("the ipctk peer failed on " + scene.string() + ": " + run.output);
-  return {static_cast<long>(values["candidates"]), values["best_ms"]};
-}
-
 // Keeps the faster of `best` and `run`, and the larger peak memory; notes the run's digest.
 void keep_best(std::optional<DetectRun>& best, DetectRun run, double& peak_rss, std::vector<std::string>& digests) {
   peak_rss = std::max(peak_rss, run.peak_rss_mb);
@@ -120,7 +89,8 @@ void keep_best(std::optional<EarliestRun>& best, const EarliestRun& run) {
   if (!best || run.whole_ms() < best->whole_ms()) best = run;
 }
 
-void keep_best(std::optional<PeerRun>& best, const PeerRun& run) {
+// Keeps the faster of `best` and `run`.
+void keep_best(std::optional<PeerCandidateSearch>& best, const PeerCandidateSearch& run) {
   if (!best || run.ms < best->ms) best = run;
 }
 
@@ -161,8 +131,8 @@ SceneResult measure_scene(const BenchContext& context, const Scene& scene, const
       if (two_cpus) keep_best(result.earliest_two, run_earliest(programs.clothcd, scene.t0, scene.t1, collisions, 2));
     }
     if (!programs.python) continue;
-    keep_best(result.peer_one, run_peer(*programs.python, programs.peer_script, peer_file, 1));
-    if (two_cpus) keep_best(result.peer_two, run_peer(*programs.python, programs.peer_script, peer_file, 2));
+    keep_best(result.peer_one, run_peer_candidates(*programs.python, programs.peer_script, peer_file, 1));
+    if (two_cpus) keep_best(result.peer_two, run_peer_candidates(*programs.python, programs.peer_script, peer_file, 2));
   }
   result.one = *one;
   result.approximate = *approximate;
