@@ -12,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../suite/bench_section.hpp"
@@ -38,6 +39,9 @@ constexpr double kExactUsPerPairTarget = 0.8;  // exact stage, per pair reaching
 // Reported collisions of a generated step checked by the exact reference (GMP, tens of microseconds each): an evenly
 // spaced sample of at most this many per mode; the shared steps are checked in full.
 constexpr std::size_t kGeneratedChecks = 2000;
+
+// The rows of a Markdown table.
+using Rows = std::vector<std::vector<std::string>>;
 
 // One step to measure: its frames on disk and what is known about it.
 struct Scene {
@@ -66,6 +70,27 @@ struct SceneResult {
   std::optional<TruthCheck> peer_truth;
 };
 
+// The programs a step is measured with.
+struct Programs {
+  fs::path clothcd;                            ///< clothcd, for `clothcd detect`.
+  std::vector<std::string> exact_flags;        ///< Its flags for the new default (exact decisions).
+  std::vector<std::string> approximate_flags;  ///< Its flags for the old default (approximate).
+  std::optional<fs::path> python;              ///< The peer's Python, when it imports ipctk.
+  std::string peer_status;                     ///< The peer's version, or why it is not run.
+  fs::path peer_script;                        ///< bench/peers/ipctk_candidates.py.
+  fs::path narrow_phase_script;                ///< bench/peers/ipctk_narrow_phase.py.
+  bool earliest = false;                       ///< clothcd detect has --earliest.
+};
+
+// What the section's tables read: how the steps were measured and what was measured on each.
+struct ScaleRun {
+  Programs programs;
+  int rounds = 1;                    // rounds of clothcd detect and the peer's candidate search per step
+  std::vector<SceneResult> results;  // one per step, in the order they were measured
+  double reference_ms = 0;           // the exact reference's time over every check of every step
+  double peer_narrow_ms = 0;         // the peer's narrow phase over every step
+};
+
 // The generated steps: `quick` one small one; else from about 1M to 30M+ candidate pairs, the two largest (minutes
 // and gigabytes at present) only when the section runs alone.
 std::vector<ThrownBodiesSpec> generated_specs(const BenchContext& context) {
@@ -75,6 +100,59 @@ std::vector<ThrownBodiesSpec> generated_specs(const BenchContext& context) {
   specs.push_back({"thrown-32", 32, 18, 1.0, 3});
   specs.push_back({"thrown-64", 64, 17, 1.0, 4});
   return specs;
+}
+
+// The clothcd program to measure: --clothcd, else the one beside this program. Throws std::runtime_error when it
+// cannot be run, or when the run is not made inside the repository (the peer's scripts are in bench/peers).
+fs::path measured_clothcd(const BenchContext& context) {
+  const fs::path clothcd = context.clothcd_program.empty()
+                               ? fs::read_symlink("/proc/self/exe").parent_path() / "clothcd"
+                               : fs::absolute(context.clothcd_program);
+  if (access(clothcd.c_str(), X_OK) != 0) throw std::runtime_error("cannot run " + clothcd.string());
+  if (context.repository.empty())
+    throw std::runtime_error("scale: run clothcd bench inside the repository (its peer scripts are in bench/peers)");
+  return clothcd;
+}
+
+// The steps to measure: the shared real steps when present (cloth-funnel alone in a quick run), then the generated
+// ones, written into `scratch` as PLY frames.
+std::vector<Scene> scenes_to_measure(const BenchContext& context, const fs::path& scratch) {
+  std::vector<Scene> scenes;
+  if (context.scalable_ccd) {
+    for (const char* name : {"cloth-funnel", "rod-twist"}) {
+      const fs::path dir = *context.scalable_ccd / name;
+      if (context.quick && std::string(name) == "rod-twist") continue;
+      if (fs::exists(dir / "t0.ply")) scenes.push_back({name, dir / "t0.ply", dir / "t1.ply", dir / "truth.json"});
+    }
+  }
+  for (const ThrownBodiesSpec& spec : generated_specs(context)) {
+    context.progress("generating " + spec.name);
+    const ThrownBodiesStep step = make_thrown_bodies(spec);
+    Scene scene;
+    scene.name = spec.name;
+    scene.t0 = scratch / (spec.name + "-t0.ply");
+    scene.t1 = scratch / (spec.name + "-t1.ply");
+    scene.generated = true;
+    save_mesh(step.start, scene.t0);
+    save_mesh({step.end, step.start.faces}, scene.t1);
+    scenes.push_back(scene);
+  }
+  return scenes;
+}
+
+// `clothcd` with its flags for either mode and its searches, and the peer: its Python (its environment created on
+// first use) and its scripts in the repository's bench/peers.
+Programs measuring_programs(const BenchContext& context, const fs::path& clothcd) {
+  const fs::path peers = context.repository / "bench" / "peers";
+  Programs programs;
+  programs.clothcd = clothcd;
+  programs.exact_flags = detect_mode_flags(clothcd, DetectMode::Exact);
+  programs.approximate_flags = detect_mode_flags(clothcd, DetectMode::Approximate);
+  programs.peer_script = peers / "ipctk_candidates.py";
+  programs.python = peer_python(context, programs.peer_script, programs.peer_status);
+  programs.narrow_phase_script = peers / "ipctk_narrow_phase.py";
+  programs.earliest = detect_has_earliest(clothcd);
+  return programs;
 }
 
 // Keeps the faster of `best` and `run`, and the larger peak memory; notes the run's digest.
@@ -93,17 +171,6 @@ void keep_best(std::optional<EarliestRun>& best, const EarliestRun& run) {
 void keep_best(std::optional<PeerCandidateSearch>& best, const PeerCandidateSearch& run) {
   if (!best || run.ms < best->ms) best = run;
 }
-
-// The programs a step is measured with.
-struct Programs {
-  fs::path clothcd;                           ///< clothcd, for `clothcd detect`.
-  std::vector<std::string> exact_flags;       ///< Its flags for the new default (exact decisions).
-  std::vector<std::string> approximate_flags;  ///< Its flags for the old default (approximate).
-  std::optional<fs::path> python;             ///< The peer's Python, when it imports ipctk.
-  fs::path peer_script;                       ///< bench/peers/ipctk_candidates.py.
-  fs::path narrow_phase_script;               ///< bench/peers/ipctk_narrow_phase.py.
-  bool earliest = false;                      ///< clothcd detect has --earliest.
-};
 
 // `repeats` rounds, each running clothcd detect in the old default on one CPU, in the new default on one CPU and on
 // two, and the peer's candidate search on one and on two in turn (so a change of the shared machine's load affects
@@ -148,10 +215,61 @@ SceneResult measure_scene(const BenchContext& context, const Scene& scene, const
   return result;
 }
 
-std::string verdict(bool met) { return met ? "met" : "**missed**"; }
+// The peer's narrow phase on the step in `peer_file`: batch, and on a shared step also one candidate at a time (the
+// Python pass, tens of microseconds a candidate), those hits checked like ours; adds its time and the reference's to
+// `run`.
+void measure_peer_narrow_phase(const BenchContext& context, const MeshFrames& frames, const fs::path& peer_file,
+                               SceneResult& result, ScaleRun& run) {
+  const Scene& scene = result.scene;
+  context.progress(scene.name + ": the peer's Tight-Inclusion narrow phase" +
+                   (scene.generated ? "" : ", batch and one candidate at a time"));
+  run.peer_narrow_ms += time_ms([&] {
+    result.peer_narrow = run_peer_narrow_phase(*run.programs.python, run.programs.narrow_phase_script, peer_file,
+                                               peer_file.parent_path() / "peer-hits.txt", !scene.generated, 1);
+  });
+  if (!result.peer_narrow->per_pair) return;
+  result.peer_false_reports = check_false_reports(frames, result.peer_narrow->hits, SIZE_MAX);
+  run.reference_ms += result.peer_false_reports.ms;
+  if (scene.truth) result.peer_truth = check_truth(*scene.truth, result.peer_narrow->hits);
+}
+
+// Measures one step (measure_scene), checks what either mode reported with the exact reference (all of it on a shared
+// step, a sample on a generated one) and runs the peer's narrow phase on it; adds the result to `run`.
+void measure_step(const BenchContext& context, Scene scene, const fs::path& scratch, bool two_cpus, ScaleRun& run) {
+  const MeshFrames frames = load_mesh_frames(scene.t0, scene.t1);
+  scene.vertices = static_cast<long>(frames.start.vertex_count());
+  scene.faces = static_cast<long>(frames.start.face_count());
+  const fs::path peer_file = scratch / "peer-scene.bin";
+  if (run.programs.python) write_peer_scene(frames, peer_file);
+  SceneResult result = measure_scene(context, scene, peer_file, run.programs, run.rounds, two_cpus);
+  context.progress(scene.name + ": false reports by the exact reference");
+  const std::size_t checks = scene.generated ? kGeneratedChecks : SIZE_MAX;
+  result.false_reports = check_false_reports(frames, result.one.collisions, checks);
+  result.approximate_false_reports = check_false_reports(frames, result.approximate.collisions, checks);
+  run.reference_ms += result.false_reports.ms + result.approximate_false_reports.ms;
+  if (run.programs.python) measure_peer_narrow_phase(context, frames, peer_file, result, run);
+  run.results.push_back(std::move(result));
+}
+
+// Every step measured in turn with `programs`, in one round in a quick run, else three.
+ScaleRun measure_scenes(const BenchContext& context, const std::vector<Scene>& scenes, const Programs& programs,
+                        const fs::path& scratch) {
+  ScaleRun run;
+  run.programs = programs;
+  run.rounds = context.quick ? 1 : 3;
+  const bool two_cpus = have_cpus(2);
+  for (const Scene& scene : scenes) measure_step(context, scene, scratch, two_cpus, run);
+  return run;
+}
+
+std::string verdict(bool met) {
+  return met ? "met" : "**missed**";
+}
 
 // Pairs that reach the exact stage (candidates the culling stage kept).
-long reaching(const DetectRun& run) { return run.candidates - run.culled; }
+long reaching(const DetectRun& run) {
+  return run.candidates - run.culled;
+}
 
 // Exact-stage time per pair reaching it, in microseconds.
 double us_per_pair(const DetectRun& run) {
@@ -160,14 +278,18 @@ double us_per_pair(const DetectRun& run) {
 
 // "n" when every reported collision was checked, "n of k checked" for a sample.
 std::string false_count(const FalseReportCheck& check) {
-  return std::to_string(check.not_colliding) +
-         (check.complete() ? "" : " (" + std::to_string(check.checked) + " of " + std::to_string(check.reported) +
-                                      " checked)");
+  return std::to_string(check.not_colliding) + (check.complete() ? ""
+                                                                 : " (" + std::to_string(check.checked) + " of " +
+                                                                       std::to_string(check.reported) + " checked)");
 }
 
-std::string mb(double value) { return fixed(value, 1) + " MB"; }
+std::string mb(double value) {
+  return fixed(value, 1) + " MB";
+}
 
-std::string ms(double value) { return number(value, 4) + " ms"; }
+std::string ms(double value) {
+  return number(value, 4) + " ms";
+}
 
 std::string join_flags(const std::vector<std::string>& flags) {
   std::string text;
@@ -177,78 +299,15 @@ std::string join_flags(const std::vector<std::string>& flags) {
 
 SectionReport run_scale(const BenchContext& context) {
   const ScratchFolder scratch("scale");
-  const fs::path clothcd = context.clothcd_program.empty()
-                               ? fs::read_symlink("/proc/self/exe").parent_path() / "clothcd"
-                               : fs::absolute(context.clothcd_program);
-  if (access(clothcd.c_str(), X_OK) != 0) throw std::runtime_error("cannot run " + clothcd.string());
-  if (context.repository.empty())
-    throw std::runtime_error("scale: run clothcd bench inside the repository (its peer scripts are in bench/peers)");
-  const fs::path script = context.repository / "bench" / "peers" / "ipctk_candidates.py";
-  const int repeats = context.quick ? 1 : 3;
-  const bool two_cpus = have_cpus(2);
-
-  std::vector<Scene> scenes;
-  if (context.scalable_ccd) {
-    for (const char* name : {"cloth-funnel", "rod-twist"}) {
-      const fs::path dir = *context.scalable_ccd / name;
-      if (context.quick && std::string(name) == "rod-twist") continue;
-      if (fs::exists(dir / "t0.ply"))
-        scenes.push_back({name, dir / "t0.ply", dir / "t1.ply", dir / "truth.json"});
-    }
-  }
-  for (const ThrownBodiesSpec& spec : generated_specs(context)) {
-    context.progress("generating " + spec.name);
-    const ThrownBodiesStep step = make_thrown_bodies(spec);
-    Scene scene;
-    scene.name = spec.name;
-    scene.t0 = scratch.path() / (spec.name + "-t0.ply");
-    scene.t1 = scratch.path() / (spec.name + "-t1.ply");
-    scene.generated = true;
-    save_mesh(step.start, scene.t0);
-    save_mesh({step.end, step.start.faces}, scene.t1);
-    scenes.push_back(scene);
-  }
-
-  std::string peer_status;
-  const Programs programs{clothcd,
-                          detect_mode_flags(clothcd, DetectMode::Exact),
-                          detect_mode_flags(clothcd, DetectMode::Approximate),
-                          peer_python(context, script, peer_status),
-                          script,
-                          context.repository / "bench" / "peers" / "ipctk_narrow_phase.py",
-                          detect_has_earliest(clothcd)};
+  const fs::path clothcd = measured_clothcd(context);
+  const std::vector<Scene> scenes = scenes_to_measure(context, scratch.path());
+  const ScaleRun run = measure_scenes(context, scenes, measuring_programs(context, clothcd), scratch.path());
+  const Programs& programs = run.programs;
   const std::optional<fs::path>& python = programs.python;
-  std::vector<SceneResult> results;
-  double reference_ms = 0, peer_narrow_ms = 0;
-  for (Scene& scene : scenes) {
-    const MeshFrames frames = load_mesh_frames(scene.t0, scene.t1);
-    scene.vertices = static_cast<long>(frames.start.vertex_count());
-    scene.faces = static_cast<long>(frames.start.face_count());
-    const fs::path peer_file = scratch.path() / "peer-scene.bin";
-    if (python) write_peer_scene(frames, peer_file);
-    SceneResult result = measure_scene(context, scene, peer_file, programs, repeats, two_cpus);
-    context.progress(scene.name + ": false reports by the exact reference");
-    const std::size_t checks = scene.generated ? kGeneratedChecks : SIZE_MAX;
-    result.false_reports = check_false_reports(frames, result.one.collisions, checks);
-    result.approximate_false_reports = check_false_reports(frames, result.approximate.collisions, checks);
-    reference_ms += result.false_reports.ms + result.approximate_false_reports.ms;
-    if (python) {
-      // The per-pair pass (Python, tens of microseconds a candidate) only on the shared steps.
-      context.progress(scene.name + ": the peer's Tight-Inclusion narrow phase" +
-                       (scene.generated ? "" : ", batch and one candidate at a time"));
-      const double started = time_ms([&] {
-        result.peer_narrow = run_peer_narrow_phase(*python, programs.narrow_phase_script, peer_file,
-                                                   scratch.path() / "peer-hits.txt", !scene.generated, 1);
-      });
-      peer_narrow_ms += started;
-      if (result.peer_narrow->per_pair) {
-        result.peer_false_reports = check_false_reports(frames, result.peer_narrow->hits, SIZE_MAX);
-        reference_ms += result.peer_false_reports.ms;
-        if (scene.truth) result.peer_truth = check_truth(*scene.truth, result.peer_narrow->hits);
-      }
-    }
-    results.push_back(std::move(result));
-  }
+  const std::string& peer_status = programs.peer_status;
+  const std::vector<SceneResult>& results = run.results;
+  const int repeats = run.rounds;
+  const double reference_ms = run.reference_ms, peer_narrow_ms = run.peer_narrow_ms;
 
   CsvFile csv(context.out_dir / "scale.csv",
               "scene,vertices,faces,candidates,refit_ms,traversal_ms,culling_ms,exact_ms,whole_1t_ms,"
