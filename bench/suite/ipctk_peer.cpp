@@ -65,6 +65,28 @@ std::map<std::string, double> peer_values(const std::string& output) {
   return values;
 }
 
+void write_peer_scene(const MeshFrames& frames, const fs::path& path) {
+  std::ofstream out(path, std::ios::binary);
+  const std::int64_t counts[2] = {frames.start.vertex_count(), frames.start.face_count()};
+  out.write(reinterpret_cast<const char*>(counts), sizeof counts);
+  const auto bytes = [](Eigen::Index values) { return static_cast<std::streamsize>(values * 8); };
+  out.write(reinterpret_cast<const char*>(frames.start.vertices.data()), bytes(frames.start.vertices.size()));
+  out.write(reinterpret_cast<const char*>(frames.end.data()), bytes(frames.end.size()));
+  out.write(reinterpret_cast<const char*>(frames.start.faces.data()), frames.start.faces.size() * 4);
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
+PeerCandidateSearch run_peer_candidates(const fs::path& python, const fs::path& script, const fs::path& scene_bin,
+                                        int threads) {
+  const ChildRun run = run_child(
+      {python.string(), script.string(), scene_bin.string(), "--threads", std::to_string(threads), "--repeats", "1"},
+      threads);
+  if (run.exit_code != 0) throw peer_failure(scene_bin.string(), run);
+  const std::map<std::string, double> values = peer_values(run.output);
+  const std::string what = scene_bin.string();
+  return {static_cast<long>(value(values, "candidates", what, run)), value(values, "best_ms", what, run)};
+}
+
 PeerNarrowPhase run_peer_narrow_phase(const fs::path& python, const fs::path& script, const fs::path& scene_bin,
                                       const fs::path& hits_file, bool per_pair, int repeats) {
   std::vector<std::string> arguments{python.string(), script.string(), "step", scene_bin.string(), "--hits",

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
-/// The IPC Toolkit peer (the `ipctk` wheel from PyPI) as the benchmarks run it: its Python environment, and its
-/// Tight-Inclusion narrow phase (bench/peers/ipctk_narrow_phase.py) on a step's own LBVH candidates or on single
-/// queries, read back into the bench's collision keys.
+/// The IPC Toolkit peer (the `ipctk` wheel from PyPI) as the benchmarks run it: its Python environment, a step's frames
+/// written for its scripts, its LBVH candidate search (bench/peers/ipctk_candidates.py), and its Tight-Inclusion
+/// narrow phase (bench/peers/ipctk_narrow_phase.py) on a step's own LBVH candidates or on single queries, read back
+/// into the bench's collision keys.
 
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 #include "bench_section.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "clothcd/mesh/mesh_frames.hpp"
 #include "detect_run.hpp"
 
 namespace clothcd::bench {
@@ -26,6 +28,23 @@ namespace clothcd::bench {
 
 /// The `name=value` words of a peer script's output line, values as numbers.
 [[nodiscard]] std::map<std::string, double> peer_values(const std::string& output);
+
+/// Writes a step's two frames for the peer's scripts (SCENE.bin, the format bench/peers/ipctk_candidates.py reads:
+/// vertex and face counts, start and end positions, faces). Throws std::runtime_error naming `path` when the write
+/// fails.
+void write_peer_scene(const MeshFrames& frames, const std::filesystem::path& path);
+
+/// The peer's LBVH candidate search on one step at one thread count.
+struct PeerCandidateSearch {
+  long candidates = 0;  ///< Vertex-face + edge-edge candidate pairs it found.
+  double ms = 0;        ///< Its time (`Candidates.build` alone).
+};
+
+/// Runs `script scene_bin --threads T --repeats 1` (bench/peers/ipctk_candidates.py) with `python` on the first
+/// `threads` CPUs. Throws std::runtime_error with its output when it fails.
+[[nodiscard]] PeerCandidateSearch run_peer_candidates(const std::filesystem::path& python,
+                                                      const std::filesystem::path& script,
+                                                      const std::filesystem::path& scene_bin, int threads);
 
 /// The peer's narrow phase on one step (see bench/peers/ipctk_narrow_phase.py for what each time covers).
 struct PeerNarrowPhase {
