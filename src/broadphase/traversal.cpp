@@ -24,6 +24,7 @@
 #include "broadphase/body_view_check.hpp"
 #include "broadphase/leaf_pairs.hpp"
 #include "broadphase/packed_boxes.hpp"
+#include "geometry/box_obb_overlap.hpp"
 #include "support/simd_level.hpp"
 
 namespace clothcd::broadphase {
@@ -56,38 +57,14 @@ struct SphereThenBox {
   }
 };
 
-// Separating axis test of an AABB against an OBB over the 15 candidate axes (Gottschalk et al. 1996).
-bool box_obb_overlap(const FlatBox& box, const geometry::Obb& obb) {
-  const Eigen::Vector3d ca(0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
-                           0.5 * (box.min[2] + box.max[2]));
-  const Eigen::Vector3d ea(0.5 * (box.max[0] - box.min[0]), 0.5 * (box.max[1] - box.min[1]),
-                           0.5 * (box.max[2] - box.min[2]));
-  const Eigen::Matrix3d& r = obb.axes;
-  const Eigen::Matrix3d abs_r = r.cwiseAbs().array() + 1e-9;
-  const Eigen::Vector3d t = obb.center - ca;
-  const Eigen::Vector3d& eb = obb.half_extents;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(t[i]) > ea[i] + eb.dot(abs_r.row(i).transpose())) return false;
-  }
-  for (int j = 0; j < 3; ++j) {
-    if (std::abs(t.dot(r.col(j))) > ea.dot(abs_r.col(j)) + eb[j]) return false;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double ra = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
-      const double rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
-      if (std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) > ra + rb) return false;
-    }
-  }
-  return true;
-}
-
+// Node boxes of the first hierarchy against node OBBs of the second (geometry/box_obb_overlap.hpp).
 struct BoxObb {
   const Bvh* a;
   const Bvh* b;
-  bool operator()(int i, int j) const { return box_obb_overlap(a->boxes()[i], b->obbs()[j]); }
+  bool operator()(int i, int j) const {
+    const FlatBox& box = a->boxes()[i];
+    return geometry::box_obb_overlap(box.min, box.max, b->obbs()[j]);
+  }
 };
 
 int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - bvh.nodes()[node].face_begin; }
@@ -398,7 +375,8 @@ class MovedQueries {
       stack_.pop_back();
       ++stats_.volume_tests;
       const bool overlaps =
-          searched_.boxes().empty() ? box_obb_overlap(box, searched_.obbs()[n]) : searched_.boxes()[n].overlaps(box);
+          searched_.boxes().empty() ? geometry::box_obb_overlap(box.min, box.max, searched_.obbs()[n])
+                                    : searched_.boxes()[n].overlaps(box);
       if (!overlaps) continue;
       const BvhNode& node = searched_.nodes()[n];
       if (node.is_leaf()) {
