@@ -3,9 +3,8 @@
 // (leaf_pairs.cpp).
 // Sphere hierarchies follow the paper's root-node double box: root spheres first, then the root AABBs (built here, only
 // when the spheres overlap), then the descent, which tests each node pair's spheres and, when they overlap, its boxes
-// (loose spheres alone let far more node pairs through on thin cloth). The search is split into independent tasks for
-// TBB; each task writes its own buffer and the buffers are joined in task order, so the output does not depend on the
-// schedule.
+// (loose spheres alone let far more node pairs through on thin cloth). The candidates go to a sink in chunks as the
+// search finds them; with `parallel`, the node pairs of large subtrees become TBB tasks that idle threads take.
 #include "broadphase/traversal.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -29,9 +28,6 @@
 
 namespace clothcd::broadphase {
 namespace {
-
-// Enough tasks to balance two cores without making the serial expansion or the joins expensive.
-constexpr std::size_t kTargetTasks = 64;
 
 struct Task {
   int a = 0;            // node of the first hierarchy
@@ -133,18 +129,16 @@ std::vector<std::uint8_t> dirty_nodes(const Bvh& bvh, const std::vector<std::uin
   return dirty;
 }
 
-// Where a search puts its candidates: collected into one set (the tasks' own sets joined in task order, so that the
-// order does not depend on the schedule), or handed to a sink in chunks as the tasks find them.
+// Where a search hands its candidates: to the sink, in chunks.
 struct Output {
-  CandidateSet* collected = nullptr;
-  CandidateSink* sink = nullptr;
-  std::size_t chunk = 0;  // streaming: a task's buffer goes to the sink once it holds this many
+  CandidateSink& sink;
+  std::size_t chunk = 0;  // a buffer goes to the sink once it holds this many
 };
 
-// Streaming: hands `buffer` to the sink and empties it, once it holds a chunk (`full_only`) or whenever it holds any.
+// Hands `buffer` to the sink and empties it, once it holds a chunk (`full_only`) or whenever it holds any.
 void pass_on(CandidateSet& buffer, const Output& output, bool full_only) {
-  if (output.sink == nullptr || buffer.size() == 0 || (full_only && buffer.size() < output.chunk)) return;
-  output.sink->consume(buffer);
+  if (buffer.size() == 0 || (full_only && buffer.size() < output.chunk)) return;
+  output.sink.consume(buffer);
   buffer.clear();
 }
 
@@ -154,14 +148,14 @@ double milliseconds_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// The parallel streamed search hands a node pair of at least kMinSpawnFaces faces to another task only while fewer
+// The parallel search hands a node pair of at least kMinSpawnFaces faces to another task only while fewer
 // than kPendingPerThread tasks per thread wait to be taken (lazy splitting): idle threads always find work, even when
 // the pairs crowd into a few subtrees, and a busy search does not pay for tasks nobody needs. A search whose root holds
 // fewer faces, or one with a single thread to run on, runs on the calling thread.
 constexpr int kMinSpawnFaces = 128;
 constexpr int kPendingPerThread = 2;
 
-// One thread's state in a streamed search, reused by the tasks the thread runs one after the other.
+// One thread's state in a search, reused by the tasks the thread runs one after the other.
 struct StreamThread {
   TraversalStats stats;
   CandidateSet buffer;  // candidates not yet handed to the sink
@@ -169,7 +163,7 @@ struct StreamThread {
   std::vector<Task> stack;
 };
 
-// The streamed search: depth-first from `root`; with `parallel`, the node pairs of large subtrees become tasks of a
+// The search: depth-first from `root`; with `parallel`, the node pairs of large subtrees become tasks of a
 // TBB task group, which idle threads take, so one body against itself keeps every core busy. Each thread hands its
 // buffer to the sink whenever it holds a chunk, and what is left once every task is done.
 template <class Overlap, class LeafWork>
@@ -233,66 +227,14 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
   }
 }
 
+// The search of `root` (stream), restricted to the node pairs with a dirty node when moved vertices are given.
 template <class Overlap, class LeafWork>
 void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& root, const LeafWork& leaf_work,
             const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
   std::vector<std::uint8_t> dirty_storage;
   if (settings.moved_vertices != nullptr) dirty_storage = dirty_nodes(ta, *settings.moved_vertices);
   const std::uint8_t* dirty = settings.moved_vertices != nullptr ? dirty_storage.data() : nullptr;
-  if (output.sink != nullptr) return stream(ta, tb, overlap, dirty, root, leaf_work, settings, output, stats);
-  CandidateSet& out = *output.collected;
-  // Breadth-first expansion into independent tasks; leaf tasks are kept as tasks.
-  std::vector<Task> tasks{root};
-  while (settings.parallel && tasks.size() < kTargetTasks) {
-    std::vector<Task> next;
-    bool expanded = false;
-    for (const Task& task : tasks) {
-      const bool leaves = task.self ? ta.nodes()[task.a].is_leaf()
-                                    : ta.nodes()[task.a].is_leaf() && tb.nodes()[task.b].is_leaf();
-      if (leaves) {
-        next.push_back(task);
-        continue;
-      }
-      expanded = true;
-      step(ta, tb, overlap, dirty, task, stats, [&](const Task& t) { next.push_back(t); }, [](const Task&) {});
-    }
-    tasks.swap(next);
-    if (!expanded) break;
-  }
-
-  auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
-    const auto started = Clock::now();
-    std::vector<Task> stack{first};
-    detail::LeafScratch scratch;
-    scratch.level = simd_level();
-    while (!stack.empty()) {
-      const Task task = stack.back();
-      stack.pop_back();
-      step(ta, tb, overlap, dirty, task, task_stats, [&](const Task& t) { stack.push_back(t); },
-           [&](const Task& t) { leaf_work(t, task_out, task_stats, scratch); });
-    }
-    task_stats.task_ms += milliseconds_since(started);
-  };
-
-  if (!settings.parallel || tasks.size() == 1) {
-    for (const Task& task : tasks) run(task, out, stats);
-    return;
-  }
-  std::vector<CandidateSet> outputs(tasks.size());
-  std::vector<TraversalStats> task_stats(tasks.size());
-  tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t i) { run(tasks[i], outputs[i], task_stats[i]); });
-  std::size_t vf = out.vertex_face.size(), ee = out.edge_edge.size();
-  for (const CandidateSet& o : outputs) {
-    vf += o.vertex_face.size();
-    ee += o.edge_edge.size();
-  }
-  out.vertex_face.reserve(vf);
-  out.edge_edge.reserve(ee);
-  for (std::size_t i = 0; i < tasks.size(); ++i) {
-    out.vertex_face.insert(out.vertex_face.end(), outputs[i].vertex_face.begin(), outputs[i].vertex_face.end());
-    out.edge_edge.insert(out.edge_edge.end(), outputs[i].edge_edge.begin(), outputs[i].edge_edge.end());
-    stats.add(task_stats[i]);
-  }
+  stream(ta, tb, overlap, dirty, root, leaf_work, settings, output, stats);
 }
 
 void check_moved(const BodyView& view, const TraversalSettings& settings) {
@@ -319,7 +261,7 @@ bool few_moved(const std::vector<std::uint8_t>& moved) {
 // that a moved primitive of the leaf may touch; each moved primitive is then tested against those leaves only.
 class MovedQueries {
  public:
-  // The candidates go to `out`, and from there, when streaming, to the sink (see pass_on).
+  // The candidates go to `out`, and from there to the sink (see pass_on).
   MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved, CandidateSet& out,
                const Output& output, TraversalStats& stats)
       : moved_tree_(moved_tree), searched_(searched), moved_(moved), out_(out), output_(output), stats_(stats) {
@@ -488,8 +430,8 @@ FlatBox body_box(const BodyView& body) {
 
 namespace {
 
-void check_chunk(const TraversalSettings& settings, const Output& output) {
-  if (output.sink != nullptr && settings.chunk_pairs == 0) {
+void check_chunk(const TraversalSettings& settings) {
+  if (settings.chunk_pairs == 0) {
     throw std::invalid_argument("broad phase: chunk_pairs must be >= 1");
   }
 }
@@ -498,7 +440,7 @@ void check_chunk(const TraversalSettings& settings, const Output& output) {
 void self_search(const BodyView& body, const TraversalSettings& settings, const Output& output,
                  TraversalStats* stats) {
   detail::check_view(body, true);
-  check_chunk(settings, output);
+  check_chunk(settings);
   TraversalStats local;
   const Bvh& t = *body.bvh;
   check_moved(body, settings);
@@ -515,7 +457,7 @@ void self_search(const BodyView& body, const TraversalSettings& settings, const 
   if (moved != nullptr && few_moved(*settings.moved_vertices)) {
     const auto started = Clock::now();
     CandidateSet buffer;
-    query_moved_self(body, *settings.moved_vertices, output.sink ? buffer : *output.collected, output, local);
+    query_moved_self(body, *settings.moved_vertices, buffer, output, local);
     local.task_ms += milliseconds_since(started);
   } else {
     search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, output, local);
@@ -528,7 +470,7 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
                  TraversalStats* stats) {
   detail::check_view(a, true);
   detail::check_view(b, true);
-  check_chunk(settings, output);
+  check_chunk(settings);
   TraversalStats local;
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
@@ -548,7 +490,7 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
   if (moved != nullptr && few_moved(*settings.moved_vertices)) {
     const auto started = Clock::now();
     CandidateSet buffer;
-    query_moved_pair(a, b, *settings.moved_vertices, output.sink ? buffer : *output.collected, output, local);
+    query_moved_pair(a, b, *settings.moved_vertices, buffer, output, local);
     local.task_ms += milliseconds_since(started);
   } else if (spheres) {
     // Root-node double box: sphere first, the AABBs only when the spheres overlap, the descent only after both.
@@ -571,24 +513,14 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
 
 }  // namespace
 
-void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats) {
-  self_search(body, settings, Output{&out, nullptr, 0}, stats);
-}
-
 void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats) {
-  self_search(body, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
-}
-
-void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats) {
-  pair_search(a, b, settings, Output{&out, nullptr, 0}, stats);
+  self_search(body, settings, Output{sink, settings.chunk_pairs}, stats);
 }
 
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats) {
-  pair_search(a, b, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
+  pair_search(a, b, settings, Output{sink, settings.chunk_pairs}, stats);
 }
 
 void detail::check_view(const BodyView& view, bool needs_bvh) {

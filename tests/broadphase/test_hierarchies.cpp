@@ -12,6 +12,7 @@
 #include "broadphase_scenes.hpp"
 #include "broadphase/brute_force_candidates.hpp"
 #include "broadphase/candidates.hpp"
+#include "broadphase/collecting_sink.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
@@ -230,31 +231,6 @@ TEST_CASE("unsupported hierarchy pairs are rejected", "[broadphase]") {
   CHECK_THROWS_AS(find_self_candidates(a.view(0), {}, out), std::invalid_argument);
 }
 
-namespace {
-
-// The pairs of `all` with a moved vertex of body `body` (the reference for searches restricted to moved vertices).
-CandidateSet touching(const CandidateSet& all, int body, const BodyTopology& topology,
-                      const std::vector<std::uint8_t>& moved) {
-  auto face_moved = [&](int f) {
-    return moved[topology.faces(f, 0)] || moved[topology.faces(f, 1)] || moved[topology.faces(f, 2)];
-  };
-  auto edge_moved = [&](int e) { return moved[topology.edges[2 * e]] || moved[topology.edges[2 * e + 1]]; };
-  CandidateSet out;
-  for (const VertexFaceCandidate& c : all.vertex_face) {
-    if ((c.vertex_body == body && moved[c.vertex]) || (c.face_body == body && face_moved(c.face))) {
-      out.vertex_face.push_back(c);
-    }
-  }
-  for (const EdgeEdgeCandidate& c : all.edge_edge) {
-    if ((c.body_a == body && edge_moved(c.edge_a)) || (c.body_b == body && edge_moved(c.edge_b))) {
-      out.edge_edge.push_back(c);
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 TEST_CASE("searches restricted to moved vertices return exactly the brute-force pairs touching them",
           "[broadphase][brute-force][moved]") {
   const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
@@ -280,8 +256,8 @@ TEST_CASE("searches restricted to moved vertices return exactly the brute-force 
   CandidateSet all, pair_all;
   brute_force_self_candidates(cloth_body.view(0), all);
   brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), pair_all);
-  const CandidateSet self_reference = touching(all, 0, cloth_body.topology, moved);
-  const CandidateSet pair_reference = touching(pair_all, 0, cloth_body.topology, moved);
+  const CandidateSet self_reference = pairs_touching_moved(all, 0, cloth_body.topology, moved);
+  const CandidateSet pair_reference = pairs_touching_moved(pair_all, 0, cloth_body.topology, moved);
   if (moved_share > 0.0) REQUIRE(self_reference.size() > 0);
   if (moved_share > 0.0) REQUIRE(pair_reference.size() > 0);
   // Every SIMD level the CPU runs (four-lane leaf and primitive tests on the baseline, eight from AVX2 up).
