@@ -16,7 +16,7 @@
 
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/ccd/query_file.hpp"
-#include "clothcd/learning/network_culler.hpp"
+#include "clothcd/culling/network_culler.hpp"
 #include "commands.hpp"
 #include "shared_options.hpp"
 

@@ -22,8 +22,8 @@
 #include <utility>
 #include <vector>
 
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "commands.hpp"
 #include "output_paths.hpp"

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "clothcd/culling/network_culler.hpp"
 #include "clothcd/mesh/mesh_io.hpp"
 #include "clothcd/render/rasterizer.hpp"
-#include "clothcd/learning/network_culler.hpp"
 #include "clothcd/simulation/intersection_check.hpp"
 #include "clothcd/simulation/simulator.hpp"
 #include "commands.hpp"

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "clothcd/culling/pair_classifier.hpp"
 #include "clothcd/learning/network_training.hpp"
-#include "clothcd/learning/pair_classifier.hpp"
 #include "clothcd/learning/pair_dataset.hpp"
 #include "clothcd/learning/random_pairs.hpp"
 #include "commands.hpp"
