@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "broadphase/leaf_pairs.hpp"
+#include "broadphase/node_overlaps.hpp"
 #include "broadphase/packed_boxes.hpp"
-#include "geometry/box_obb_overlap.hpp"
 #include "support/simd_level.hpp"
 
 namespace clothcd::broadphase::detail {
@@ -88,10 +88,7 @@ class MovedQueries {
       const int n = stack_.back();
       stack_.pop_back();
       ++stats_.volume_tests;
-      const bool overlaps =
-          searched_.boxes().empty() ? geometry::box_obb_overlap(box.min, box.max, searched_.obbs()[n])
-                                    : searched_.boxes()[n].overlaps(box);
-      if (!overlaps) continue;
+      if (!box_overlaps_node(box, searched_, n)) continue;
       const BvhNode& node = searched_.nodes()[n];
       if (node.is_leaf()) {
         leaves_.push_back(n);

@@ -24,7 +24,7 @@
 #include "broadphase/body_view_check.hpp"
 #include "broadphase/leaf_pairs.hpp"
 #include "broadphase/moved_vertex_queries.hpp"
-#include "geometry/box_obb_overlap.hpp"
+#include "broadphase/node_overlaps.hpp"
 #include "support/simd_level.hpp"
 
 namespace clothcd::broadphase {
@@ -35,33 +35,6 @@ struct Task {
   int b = 0;            // node of the second hierarchy; for a self task a == b
   bool self = false;    // the subtree of `a` against itself
   bool tested = false;  // the volumes of (a, b) are already known to overlap
-};
-
-// The three ways two node volumes are compared. Each is conservative: it never reports separation for volumes whose
-// contents overlap (the OBB test widens its projected radii slightly to absorb rounding).
-struct BoxBox {
-  const Bvh* a;
-  const Bvh* b;
-  bool operator()(int i, int j) const { return a->boxes()[i].overlaps(b->boxes()[j]); }
-};
-
-// The double volume of sphere hierarchies at every node: the spheres first, the node boxes only when they overlap.
-struct SphereThenBox {
-  const Bvh* a;
-  const Bvh* b;
-  bool operator()(int i, int j) const {
-    return a->spheres()[i].overlaps(b->spheres()[j]) && a->boxes()[i].overlaps(b->boxes()[j]);
-  }
-};
-
-// Node boxes of the first hierarchy against node OBBs of the second (geometry/box_obb_overlap.hpp).
-struct BoxObb {
-  const Bvh* a;
-  const Bvh* b;
-  bool operator()(int i, int j) const {
-    const FlatBox& box = a->boxes()[i];
-    return geometry::box_obb_overlap(box.min, box.max, b->obbs()[j]);
-  }
 };
 
 int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - bvh.nodes()[node].face_begin; }
@@ -286,7 +259,7 @@ void self_search(const BodyView& body, const TraversalSettings& settings, const 
     detail::query_moved_self(body, *settings.moved_vertices, output.chunk, output.sink, local);
     local.task_ms += milliseconds_since(started);
   } else {
-    search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, output, local);
+    search(t, t, detail::BoxBox{&t, &t}, root, leaf_work, settings, output, local);
   }
   if (stats != nullptr) stats->add(local);
 }
@@ -325,13 +298,13 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
       local.volume_tests += 1;
       if (body_box(a).overlaps(body_box(b))) {
         local.root_aabb_overlap = true;
-        search(ta, tb, SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, output, local);
+        search(ta, tb, detail::SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, output, local);
       }
     }
   } else if (boxes) {
-    search(ta, tb, BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
+    search(ta, tb, detail::BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
   } else {
-    search(ta, tb, BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
+    search(ta, tb, detail::BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
   }
   if (stats != nullptr) stats->add(local);
 }
