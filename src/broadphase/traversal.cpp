@@ -321,13 +321,4 @@ void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalS
   pair_search(a, b, settings, Output{sink, settings.chunk_pairs}, stats);
 }
 
-void detail::check_view(const BodyView& view, bool needs_bvh) {
-  if (view.topology == nullptr || view.boxes == nullptr || (needs_bvh && view.bvh == nullptr)) {
-    throw std::invalid_argument("broad phase: body " + std::to_string(view.body) + " is missing its data");
-  }
-  if (needs_bvh && view.bvh->nodes().empty()) {
-    throw std::invalid_argument("broad phase: the hierarchy of body " + std::to_string(view.body) + " is not built");
-  }
-}
-
 }  // namespace clothcd::broadphase
