@@ -26,6 +26,7 @@
 #include "broadphase/body_topology.hpp"
 #include "broadphase/bvh.hpp"
 #include "broadphase/candidates.hpp"
+#include "broadphase/collecting_sink.hpp"
 #include "broadphase/swept_boxes.hpp"
 #include "broadphase/traversal.hpp"
 #include "clothcd/detection/collision_detector.hpp"

@@ -3,9 +3,9 @@
 // (leaf_pairs.cpp).
 // Sphere hierarchies follow the paper's root-node double box: root spheres first, then the root AABBs (built here, only
 // when the spheres overlap), then the descent, which tests each node pair's spheres and, when they overlap, its boxes
-// (loose spheres alone let far more node pairs through on thin cloth). The search is split into independent tasks for
-// TBB; each task writes its own buffer and the buffers are joined in task order, so the output does not depend on the
-// schedule.
+// (loose spheres alone let far more node pairs through on thin cloth). The candidates go to a sink in chunks as the
+// search finds them; with `parallel`, the node pairs of large subtrees become TBB tasks that idle threads take. A
+// search restricted to a few moved vertices takes the primitive queries of moved_vertex_queries.cpp instead.
 #include "broadphase/traversal.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -23,71 +23,18 @@
 
 #include "broadphase/body_view_check.hpp"
 #include "broadphase/leaf_pairs.hpp"
-#include "broadphase/packed_boxes.hpp"
+#include "broadphase/moved_vertex_queries.hpp"
+#include "broadphase/node_overlaps.hpp"
 #include "support/simd_level.hpp"
 
 namespace clothcd::broadphase {
 namespace {
-
-// Enough tasks to balance two cores without making the serial expansion or the joins expensive.
-constexpr std::size_t kTargetTasks = 64;
 
 struct Task {
   int a = 0;            // node of the first hierarchy
   int b = 0;            // node of the second hierarchy; for a self task a == b
   bool self = false;    // the subtree of `a` against itself
   bool tested = false;  // the volumes of (a, b) are already known to overlap
-};
-
-// The three ways two node volumes are compared. Each is conservative: it never reports separation for volumes whose
-// contents overlap (the OBB test widens its projected radii slightly to absorb rounding).
-struct BoxBox {
-  const Bvh* a;
-  const Bvh* b;
-  bool operator()(int i, int j) const { return a->boxes()[i].overlaps(b->boxes()[j]); }
-};
-
-// The double volume of sphere hierarchies at every node: the spheres first, the node boxes only when they overlap.
-struct SphereThenBox {
-  const Bvh* a;
-  const Bvh* b;
-  bool operator()(int i, int j) const {
-    return a->spheres()[i].overlaps(b->spheres()[j]) && a->boxes()[i].overlaps(b->boxes()[j]);
-  }
-};
-
-// Separating axis test of an AABB against an OBB over the 15 candidate axes (Gottschalk et al. 1996).
-bool box_obb_overlap(const FlatBox& box, const geometry::Obb& obb) {
-  const Eigen::Vector3d ca(0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
-                           0.5 * (box.min[2] + box.max[2]));
-  const Eigen::Vector3d ea(0.5 * (box.max[0] - box.min[0]), 0.5 * (box.max[1] - box.min[1]),
-                           0.5 * (box.max[2] - box.min[2]));
-  const Eigen::Matrix3d& r = obb.axes;
-  const Eigen::Matrix3d abs_r = r.cwiseAbs().array() + 1e-9;
-  const Eigen::Vector3d t = obb.center - ca;
-  const Eigen::Vector3d& eb = obb.half_extents;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(t[i]) > ea[i] + eb.dot(abs_r.row(i).transpose())) return false;
-  }
-  for (int j = 0; j < 3; ++j) {
-    if (std::abs(t.dot(r.col(j))) > ea.dot(abs_r.col(j)) + eb[j]) return false;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; ++j) {
-      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double ra = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
-      const double rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
-      if (std::abs(t[i2] * r(i1, j) - t[i1] * r(i2, j)) > ra + rb) return false;
-    }
-  }
-  return true;
-}
-
-struct BoxObb {
-  const Bvh* a;
-  const Bvh* b;
-  bool operator()(int i, int j) const { return box_obb_overlap(a->boxes()[i], b->obbs()[j]); }
 };
 
 int face_count(const Bvh& bvh, int node) { return bvh.nodes()[node].face_end - bvh.nodes()[node].face_begin; }
@@ -156,18 +103,16 @@ std::vector<std::uint8_t> dirty_nodes(const Bvh& bvh, const std::vector<std::uin
   return dirty;
 }
 
-// Where a search puts its candidates: collected into one set (the tasks' own sets joined in task order, so that the
-// order does not depend on the schedule), or handed to a sink in chunks as the tasks find them.
+// Where a search hands its candidates: to the sink, in chunks.
 struct Output {
-  CandidateSet* collected = nullptr;
-  CandidateSink* sink = nullptr;
-  std::size_t chunk = 0;  // streaming: a task's buffer goes to the sink once it holds this many
+  CandidateSink& sink;
+  std::size_t chunk = 0;  // a buffer goes to the sink once it holds this many
 };
 
-// Streaming: hands `buffer` to the sink and empties it, once it holds a chunk (`full_only`) or whenever it holds any.
-void pass_on(CandidateSet& buffer, const Output& output, bool full_only) {
-  if (output.sink == nullptr || buffer.size() == 0 || (full_only && buffer.size() < output.chunk)) return;
-  output.sink->consume(buffer);
+// Hands `buffer` to the sink and empties it, when it holds any.
+void pass_on(CandidateSet& buffer, const Output& output) {
+  if (buffer.size() == 0) return;
+  output.sink.consume(buffer);
   buffer.clear();
 }
 
@@ -177,14 +122,14 @@ double milliseconds_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// The parallel streamed search hands a node pair of at least kMinSpawnFaces faces to another task only while fewer
+// The parallel search hands a node pair of at least kMinSpawnFaces faces to another task only while fewer
 // than kPendingPerThread tasks per thread wait to be taken (lazy splitting): idle threads always find work, even when
 // the pairs crowd into a few subtrees, and a busy search does not pay for tasks nobody needs. A search whose root holds
 // fewer faces, or one with a single thread to run on, runs on the calling thread.
 constexpr int kMinSpawnFaces = 128;
 constexpr int kPendingPerThread = 2;
 
-// One thread's state in a streamed search, reused by the tasks the thread runs one after the other.
+// One thread's state in a search, reused by the tasks the thread runs one after the other.
 struct StreamThread {
   TraversalStats stats;
   CandidateSet buffer;  // candidates not yet handed to the sink
@@ -192,7 +137,7 @@ struct StreamThread {
   std::vector<Task> stack;
 };
 
-// The streamed search: depth-first from `root`; with `parallel`, the node pairs of large subtrees become tasks of a
+// The search: depth-first from `root`; with `parallel`, the node pairs of large subtrees become tasks of a
 // TBB task group, which idle threads take, so one body against itself keeps every core busy. Each thread hands its
 // buffer to the sink whenever it holds a chunk, and what is left once every task is done.
 template <class Overlap, class LeafWork>
@@ -230,7 +175,7 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
         // Isolated: a sink that waits for TBB work of its own (a culler or an observer may) must not let this thread
         // take another task of the search meanwhile, which would use this thread's state.
         if (thread.buffer.size() >= output.chunk) {
-          tbb::this_task_arena::isolate([&] { pass_on(thread.buffer, output, false); });
+          tbb::this_task_arena::isolate([&] { pass_on(thread.buffer, output); });
         }
       });
     }
@@ -249,73 +194,21 @@ void stream(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const std::uin
     stats.add(thread.stats);
   }
   if (spawn && left.size() > 1) {
-    tbb::parallel_for(std::size_t{0}, left.size(), [&](std::size_t i) { pass_on(left[i]->buffer, output, false); },
+    tbb::parallel_for(std::size_t{0}, left.size(), [&](std::size_t i) { pass_on(left[i]->buffer, output); },
                       tbb::simple_partitioner());
   } else {
-    for (StreamThread* thread : left) pass_on(thread->buffer, output, false);
+    for (StreamThread* thread : left) pass_on(thread->buffer, output);
   }
 }
 
+// The search of `root` (stream), restricted to the node pairs with a dirty node when moved vertices are given.
 template <class Overlap, class LeafWork>
 void search(const Bvh& ta, const Bvh& tb, const Overlap& overlap, const Task& root, const LeafWork& leaf_work,
             const TraversalSettings& settings, const Output& output, TraversalStats& stats) {
   std::vector<std::uint8_t> dirty_storage;
   if (settings.moved_vertices != nullptr) dirty_storage = dirty_nodes(ta, *settings.moved_vertices);
   const std::uint8_t* dirty = settings.moved_vertices != nullptr ? dirty_storage.data() : nullptr;
-  if (output.sink != nullptr) return stream(ta, tb, overlap, dirty, root, leaf_work, settings, output, stats);
-  CandidateSet& out = *output.collected;
-  // Breadth-first expansion into independent tasks; leaf tasks are kept as tasks.
-  std::vector<Task> tasks{root};
-  while (settings.parallel && tasks.size() < kTargetTasks) {
-    std::vector<Task> next;
-    bool expanded = false;
-    for (const Task& task : tasks) {
-      const bool leaves = task.self ? ta.nodes()[task.a].is_leaf()
-                                    : ta.nodes()[task.a].is_leaf() && tb.nodes()[task.b].is_leaf();
-      if (leaves) {
-        next.push_back(task);
-        continue;
-      }
-      expanded = true;
-      step(ta, tb, overlap, dirty, task, stats, [&](const Task& t) { next.push_back(t); }, [](const Task&) {});
-    }
-    tasks.swap(next);
-    if (!expanded) break;
-  }
-
-  auto run = [&](const Task& first, CandidateSet& task_out, TraversalStats& task_stats) {
-    const auto started = Clock::now();
-    std::vector<Task> stack{first};
-    detail::LeafScratch scratch;
-    scratch.level = simd_level();
-    while (!stack.empty()) {
-      const Task task = stack.back();
-      stack.pop_back();
-      step(ta, tb, overlap, dirty, task, task_stats, [&](const Task& t) { stack.push_back(t); },
-           [&](const Task& t) { leaf_work(t, task_out, task_stats, scratch); });
-    }
-    task_stats.task_ms += milliseconds_since(started);
-  };
-
-  if (!settings.parallel || tasks.size() == 1) {
-    for (const Task& task : tasks) run(task, out, stats);
-    return;
-  }
-  std::vector<CandidateSet> outputs(tasks.size());
-  std::vector<TraversalStats> task_stats(tasks.size());
-  tbb::parallel_for(std::size_t{0}, tasks.size(), [&](std::size_t i) { run(tasks[i], outputs[i], task_stats[i]); });
-  std::size_t vf = out.vertex_face.size(), ee = out.edge_edge.size();
-  for (const CandidateSet& o : outputs) {
-    vf += o.vertex_face.size();
-    ee += o.edge_edge.size();
-  }
-  out.vertex_face.reserve(vf);
-  out.edge_edge.reserve(ee);
-  for (std::size_t i = 0; i < tasks.size(); ++i) {
-    out.vertex_face.insert(out.vertex_face.end(), outputs[i].vertex_face.begin(), outputs[i].vertex_face.end());
-    out.edge_edge.insert(out.edge_edge.end(), outputs[i].edge_edge.begin(), outputs[i].edge_edge.end());
-    stats.add(task_stats[i]);
-  }
+  stream(ta, tb, overlap, dirty, root, leaf_work, settings, output, stats);
 }
 
 void check_moved(const BodyView& view, const TraversalSettings& settings) {
@@ -325,179 +218,6 @@ void check_moved(const BodyView& view, const TraversalSettings& settings) {
                                 " flags for the " + std::to_string(view.topology->vertex_count) + " vertices of body " +
                                 std::to_string(view.body));
   }
-}
-
-// A search restricted to a few moved vertices queries the hierarchies with the boxes of the moved primitives instead
-// of descending the trees (see kMovedQueryShare): each query costs a descent to the few leaves the box touches, while
-// the descent restricted to dirty nodes still tests every primitive of every dirty leaf.
-bool few_moved(const std::vector<std::uint8_t>& moved) {
-  std::size_t count = 0;
-  for (const std::uint8_t m : moved) count += m != 0 ? 1 : 0;
-  return count * kMovedQueryShare <= moved.size();
-}
-
-// Queries of one hierarchy (the searched one) by the moved primitives of another (the moved one, possibly the same),
-// leaf by leaf of the moved one: the union of a leaf's moved faces bounds all its moved primitives (a moved vertex or
-// edge lies in its owning face, which moved too), so one descent with it finds every leaf of the searched hierarchy
-// that a moved primitive of the leaf may touch; each moved primitive is then tested against those leaves only.
-class MovedQueries {
- public:
-  // The candidates go to `out`, and from there, when streaming, to the sink (see pass_on).
-  MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved, CandidateSet& out,
-               const Output& output, TraversalStats& stats)
-      : moved_tree_(moved_tree), searched_(searched), moved_(moved), out_(out), output_(output), stats_(stats) {
-    scratch_.level = simd_level();
-  }
-
-  // True when vertex v of the moved body moved.
-  bool moved(int v) const { return moved_[static_cast<std::size_t>(v)] != 0; }
-
-  // For each leaf of the moved hierarchy with a moved face: on_vertex(i, hits), on_face(p, hits) and on_edge(i, hits)
-  // for its moved vertices, faces and edges (tree positions), `hits` being the positions of the searched hierarchy's
-  // faces, vertices and edges respectively whose boxes overlap the primitive's box.
-  template <class OnVertex, class OnFace, class OnEdge>
-  void run(const OnVertex& on_vertex, const OnFace& on_face, const OnEdge& on_edge) {
-    const Bvh& t = moved_tree_;
-    const int* faces = t.ordered_faces().data();
-    const int* edges = t.ordered_edges().data();
-    auto face_moved = [&](int p) { return moved(faces[3 * p]) || moved(faces[3 * p + 1]) || moved(faces[3 * p + 2]); };
-    for (std::size_t n = 0; n < t.nodes().size(); ++n) {
-      const BvhNode& leaf = t.nodes()[n];
-      if (!leaf.is_leaf()) continue;
-      FlatBox reach = empty_flat_box();
-      for (int p = leaf.face_begin; p < leaf.face_end; ++p) {
-        if (face_moved(p)) reach.expand(t.ordered_face_boxes()[p]);
-      }
-      if (reach.min[0] > reach.max[0]) continue;  // no moved face
-      pass_on(out_, output_, true);
-      find_leaves(reach);
-      for (int i = t.vertex_offset()[leaf.face_begin]; i < t.vertex_offset()[leaf.face_end]; ++i) {
-        if (moved(t.owned_vertices()[i])) {
-          on_vertex(i, hits(detail::LeafPrimitives::Faces, t.ordered_vertex_boxes()[i]));
-        }
-      }
-      for (int p = leaf.face_begin; p < leaf.face_end; ++p) {
-        if (face_moved(p)) on_face(p, hits(detail::LeafPrimitives::Vertices, t.ordered_face_boxes()[p]));
-      }
-      for (int i = t.edge_offset()[leaf.face_begin]; i < t.edge_offset()[leaf.face_end]; ++i) {
-        if (moved(edges[2 * i]) || moved(edges[2 * i + 1])) {
-          on_edge(i, hits(detail::LeafPrimitives::Edges, t.ordered_edge_boxes()[i]));
-        }
-      }
-    }
-    pass_on(out_, output_, false);
-  }
-
- private:
-  // The leaves of the searched hierarchy whose volume overlaps `box`, into leaves_.
-  void find_leaves(const FlatBox& box) {
-    leaves_.clear();
-    stack_.assign(1, 0);
-    while (!stack_.empty()) {
-      const int n = stack_.back();
-      stack_.pop_back();
-      ++stats_.volume_tests;
-      const bool overlaps =
-          searched_.boxes().empty() ? box_obb_overlap(box, searched_.obbs()[n]) : searched_.boxes()[n].overlaps(box);
-      if (!overlaps) continue;
-      const BvhNode& node = searched_.nodes()[n];
-      if (node.is_leaf()) {
-        leaves_.push_back(n);
-      } else {
-        stack_.push_back(node.right);
-        stack_.push_back(n + 1);
-      }
-    }
-  }
-
-  // Positions of the searched hierarchy's primitives of `kind` in leaves_ whose boxes overlap `box`.
-  const std::vector<int>& hits(detail::LeafPrimitives kind, const FlatBox& box) {
-    hits_.clear();
-    const PackedBox packed = pack_box(box);
-    for (const int leaf : leaves_) {
-      // The leaf's box first, where the hierarchy keeps one: most of a group's leaves miss a single primitive.
-      ++stats_.volume_tests;
-      if (!searched_.boxes().empty() && !searched_.boxes()[leaf].overlaps(box)) continue;
-      stats_.primitive_tests +=
-          detail::leaf_primitives_overlapping(searched_, leaf, kind, box, packed, scratch_, hits_);
-    }
-    return hits_;
-  }
-
-  const Bvh& moved_tree_;
-  const Bvh& searched_;
-  const std::vector<std::uint8_t>& moved_;
-  CandidateSet& out_;
-  const Output& output_;
-  TraversalStats& stats_;
-  detail::LeafScratch scratch_;
-  std::vector<int> stack_;
-  std::vector<int> leaves_;
-  std::vector<int> hits_;
-};
-
-// find_self_candidates restricted to `moved` by queries: each moved vertex against the faces, each moved face against
-// the unmoved vertices, each moved edge against the edges (a pair of two moved edges from the one of lower index).
-void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& moved, CandidateSet& out,
-                      const Output& output, TraversalStats& stats) {
-  const Bvh& t = *body.bvh;
-  const int id = body.body;
-  const int* faces = t.ordered_faces().data();
-  const int* edges = t.ordered_edges().data();
-  MovedQueries queries(t, t, moved, out, output, stats);
-  queries.run(
-      [&](int i, const std::vector<int>& face_hits) {
-        const int v = t.owned_vertices()[i];
-        for (const int p : face_hits) {
-          const int* f = faces + 3 * p;
-          if (f[0] != v && f[1] != v && f[2] != v) out.vertex_face.push_back({id, v, id, t.face_order()[p]});
-        }
-      },
-      [&](int p, const std::vector<int>& vertex_hits) {
-        const int* f = faces + 3 * p;
-        for (const int i : vertex_hits) {
-          const int v = t.owned_vertices()[i];
-          if (!queries.moved(v) && f[0] != v && f[1] != v && f[2] != v) {
-            out.vertex_face.push_back({id, v, id, t.face_order()[p]});
-          }
-        }
-      },
-      [&](int i, const std::vector<int>& edge_hits) {
-        const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
-        const int e = t.owned_edges()[i];
-        for (const int j : edge_hits) {
-          const int b0 = edges[2 * j], b1 = edges[2 * j + 1];
-          if (b0 == a0 || b0 == a1 || b1 == a0 || b1 == a1) continue;  // shares a vertex (or is the same edge)
-          const int g = t.owned_edges()[j];
-          if ((queries.moved(b0) || queries.moved(b1)) && g < e) continue;  // found from g
-          out.edge_edge.push_back({id, e < g ? e : g, id, e < g ? g : e});
-        }
-      });
-}
-
-// find_pair_candidates restricted to `moved` (of body a) by queries of body b's hierarchy: each moved vertex of a
-// against b's faces, each moved face of a against b's vertices, each moved edge of a against b's edges.
-void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved, CandidateSet& out,
-                      const Output& output, TraversalStats& stats) {
-  const Bvh& ta = *a.bvh;
-  const Bvh& tb = *b.bvh;
-  MovedQueries queries(ta, tb, moved, out, output, stats);
-  queries.run(
-      [&](int i, const std::vector<int>& face_hits) {
-        for (const int p : face_hits) {
-          out.vertex_face.push_back({a.body, ta.owned_vertices()[i], b.body, tb.face_order()[p]});
-        }
-      },
-      [&](int p, const std::vector<int>& vertex_hits) {
-        for (const int i : vertex_hits) {
-          out.vertex_face.push_back({b.body, tb.owned_vertices()[i], a.body, ta.face_order()[p]});
-        }
-      },
-      [&](int i, const std::vector<int>& edge_hits) {
-        for (const int j : edge_hits) {
-          out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]});
-        }
-      });
 }
 
 }  // namespace
@@ -510,8 +230,8 @@ FlatBox body_box(const BodyView& body) {
 
 namespace {
 
-void check_chunk(const TraversalSettings& settings, const Output& output) {
-  if (output.sink != nullptr && settings.chunk_pairs == 0) {
+void check_chunk(const TraversalSettings& settings) {
+  if (settings.chunk_pairs == 0) {
     throw std::invalid_argument("broad phase: chunk_pairs must be >= 1");
   }
 }
@@ -520,7 +240,7 @@ void check_chunk(const TraversalSettings& settings, const Output& output) {
 void self_search(const BodyView& body, const TraversalSettings& settings, const Output& output,
                  TraversalStats* stats) {
   detail::check_view(body, true);
-  check_chunk(settings, output);
+  check_chunk(settings);
   TraversalStats local;
   const Bvh& t = *body.bvh;
   check_moved(body, settings);
@@ -534,13 +254,12 @@ void self_search(const BodyView& body, const TraversalSettings& settings, const 
   if (t.settings().volume != VolumeKind::Sphere && t.settings().volume != VolumeKind::Aabb) {
     throw std::invalid_argument("broad phase: self-collision search needs an AABB or sphere hierarchy");
   }
-  if (moved != nullptr && few_moved(*settings.moved_vertices)) {
+  if (moved != nullptr && detail::few_moved(*settings.moved_vertices)) {
     const auto started = Clock::now();
-    CandidateSet buffer;
-    query_moved_self(body, *settings.moved_vertices, output.sink ? buffer : *output.collected, output, local);
+    detail::query_moved_self(body, *settings.moved_vertices, output.chunk, output.sink, local);
     local.task_ms += milliseconds_since(started);
   } else {
-    search(t, t, BoxBox{&t, &t}, root, leaf_work, settings, output, local);
+    search(t, t, detail::BoxBox{&t, &t}, root, leaf_work, settings, output, local);
   }
   if (stats != nullptr) stats->add(local);
 }
@@ -550,7 +269,7 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
                  TraversalStats* stats) {
   detail::check_view(a, true);
   detail::check_view(b, true);
-  check_chunk(settings, output);
+  check_chunk(settings);
   TraversalStats local;
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
@@ -567,10 +286,9 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
     throw std::invalid_argument("broad phase: unsupported pair of hierarchy volumes (use AABB-AABB, sphere-sphere or "
                                 "AABB-OBB)");
   }
-  if (moved != nullptr && few_moved(*settings.moved_vertices)) {
+  if (moved != nullptr && detail::few_moved(*settings.moved_vertices)) {
     const auto started = Clock::now();
-    CandidateSet buffer;
-    query_moved_pair(a, b, *settings.moved_vertices, output.sink ? buffer : *output.collected, output, local);
+    detail::query_moved_pair(a, b, *settings.moved_vertices, output.chunk, output.sink, local);
     local.task_ms += milliseconds_since(started);
   } else if (spheres) {
     // Root-node double box: sphere first, the AABBs only when the spheres overlap, the descent only after both.
@@ -580,46 +298,27 @@ void pair_search(const BodyView& a, const BodyView& b, const TraversalSettings& 
       local.volume_tests += 1;
       if (body_box(a).overlaps(body_box(b))) {
         local.root_aabb_overlap = true;
-        search(ta, tb, SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, output, local);
+        search(ta, tb, detail::SphereThenBox{&ta, &tb}, Task{0, 0, false, true}, leaf_work, settings, output, local);
       }
     }
   } else if (boxes) {
-    search(ta, tb, BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
+    search(ta, tb, detail::BoxBox{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
   } else {
-    search(ta, tb, BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
+    search(ta, tb, detail::BoxObb{&ta, &tb}, Task{0, 0, false, false}, leaf_work, settings, output, local);
   }
   if (stats != nullptr) stats->add(local);
 }
 
 }  // namespace
 
-void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats) {
-  self_search(body, settings, Output{&out, nullptr, 0}, stats);
-}
-
 void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats) {
-  self_search(body, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
-}
-
-void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats) {
-  pair_search(a, b, settings, Output{&out, nullptr, 0}, stats);
+  self_search(body, settings, Output{sink, settings.chunk_pairs}, stats);
 }
 
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats) {
-  pair_search(a, b, settings, Output{nullptr, &sink, settings.chunk_pairs}, stats);
-}
-
-void detail::check_view(const BodyView& view, bool needs_bvh) {
-  if (view.topology == nullptr || view.boxes == nullptr || (needs_bvh && view.bvh == nullptr)) {
-    throw std::invalid_argument("broad phase: body " + std::to_string(view.body) + " is missing its data");
-  }
-  if (needs_bvh && view.bvh->nodes().empty()) {
-    throw std::invalid_argument("broad phase: the hierarchy of body " + std::to_string(view.body) + " is not built");
-  }
+  pair_search(a, b, settings, Output{sink, settings.chunk_pairs}, stats);
 }
 
 }  // namespace clothcd::broadphase

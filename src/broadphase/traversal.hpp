@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Candidate pair search: descend two hierarchies (or one against itself) and test the owned primitives of overlapping
-/// leaves by their swept boxes. Pairs sharing a vertex are skipped inside a body, and since every vertex and edge is
-/// owned by one triangle, no pair is produced twice and adjacent triangles are never listed as pairs.
+/// leaves by their swept boxes, handing the candidates to a sink in chunks as they are found. Pairs sharing a vertex
+/// are skipped inside a body, and since every vertex and edge is owned by one triangle, no pair is produced twice and
+/// adjacent triangles are never listed as pairs.
 /// Section 3.2.1 of Jin et al.: with sphere hierarchies the root spheres are tested first, the root AABBs are built and
 /// tested only when the spheres overlap, and only then does the search descend depth-first.
 
@@ -31,7 +32,7 @@ constexpr std::size_t kMovedQueryShare = 16;
 
 /// Search options.
 struct TraversalSettings {
-  bool parallel = true;  ///< Split the search into tasks run by TBB (output order stays deterministic).
+  bool parallel = true;  ///< Split the search into tasks run by TBB (the same pairs; the chunks' order changes).
   /// Optional restriction for re-searching after a few vertices moved: flags (non-zero = moved) for the vertices of
   /// the searched body (find_self_candidates) or of the first body (find_pair_candidates). When set, exactly the
   /// pairs of the unrestricted search that involve a moved vertex of that body are returned. With at most one vertex
@@ -39,13 +40,13 @@ struct TraversalSettings {
   /// descent skips the subtrees without a moved vertex. Must stay valid during the call; its size must be that body's
   /// vertex count.
   const std::vector<std::uint8_t>* moved_vertices = nullptr;
-  /// Searches that hand their candidates to a CandidateSink: a task passes its candidates on once it holds this many
-  /// (>= 1; a chunk may exceed it by the pairs of one leaf pair).
+  /// A task passes its candidates on to the CandidateSink once it holds this many (>= 1; a chunk may exceed it by the
+  /// pairs of one leaf pair).
   std::size_t chunk_pairs = 1024;
 };
 
-/// Receives the candidates of a streamed search chunk by chunk, so that the candidates of a step are never all held at
-/// once (see find_self_candidates and find_pair_candidates with a sink).
+/// Receives the candidates of a search chunk by chunk, so that the candidates of a step are never all held at once
+/// (see find_self_candidates and find_pair_candidates; collecting_sink.hpp collects them into one set).
 class CandidateSink {
  public:
   virtual ~CandidateSink() = default;
@@ -76,26 +77,18 @@ struct TraversalStats {
 /// The AABB of a whole body for the step (union of its vertex boxes): the second root volume of the double box.
 [[nodiscard]] FlatBox body_box(const BodyView& body);
 
-/// Appends to `out` every vertex-face pair (v, f) with v not in f and every edge-edge pair sharing no vertex, within
-/// `body`, whose swept boxes overlap. Node volumes: Aabb, or Sphere (descended on its node boxes, Bvh::boxes());
-/// throws std::invalid_argument for Obb.
-/// Order: deterministic, not sorted (see sort_candidates).
-void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats = nullptr);
-
-/// Appends to `out` every pair between body `a` and body `b` (a.body < b.body) whose swept boxes overlap: vertices of a
-/// vs faces of b, vertices of b vs faces of a, edges of a vs edges of b. Volume pairs: Aabb-Aabb, Sphere-Sphere (root
-/// double box logic; below the root, node spheres first and node boxes when the spheres overlap), Aabb-Obb. Throws std::invalid_argument for any other combination.
-void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSet& out,
-                          TraversalStats* stats = nullptr);
-
-/// find_self_candidates handing the candidates to `sink` in chunks (TraversalSettings::chunk_pairs) as the search
-/// finds them instead of collecting them: the same pairs, in no particular order, and no storage proportional to them.
+/// Hands to `sink`, in chunks (TraversalSettings::chunk_pairs) as the search finds them, every vertex-face pair (v, f)
+/// with v not in f and every edge-edge pair sharing no vertex, within `body`, whose swept boxes overlap: each pair
+/// once, in no particular order (see sort_candidates), and no storage proportional to them. Node volumes: Aabb, or
+/// Sphere (descended on its node boxes, Bvh::boxes()); throws std::invalid_argument for Obb, and for chunk_pairs 0.
 /// With `parallel`, one body's search is split into node-pair tasks that every thread takes from.
 void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats = nullptr);
 
-/// find_pair_candidates handing the candidates to `sink` in chunks (see the find_self_candidates overload).
+/// Hands to `sink`, in chunks as find_self_candidates does, every pair between body `a` and body `b` (a.body < b.body)
+/// whose swept boxes overlap: vertices of a vs faces of b, vertices of b vs faces of a, edges of a vs edges of b.
+/// Volume pairs: Aabb-Aabb, Sphere-Sphere (root double box logic; below the root, node spheres first and node boxes
+/// when the spheres overlap), Aabb-Obb. Throws std::invalid_argument for any other combination, and for chunk_pairs 0.
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats = nullptr);
 

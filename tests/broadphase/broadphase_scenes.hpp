@@ -1,10 +1,14 @@
 #pragma once
-// Test scenes for the broad phase: a cloth grid over an obstacle with seeded random motion, random triangle soups.
+// Test scenes for the broad phase: a cloth grid over an obstacle with seeded random motion, random triangle soups; and
+// the reference of the searches restricted to moved vertices.
 
+#include <cstdint>
 #include <random>
+#include <vector>
 
 #include "broadphase/body_topology.hpp"
 #include "broadphase/bvh.hpp"
+#include "broadphase/candidates.hpp"
 #include "broadphase/swept_boxes.hpp"
 #include "broadphase/traversal.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
@@ -52,6 +56,29 @@ inline TriangleMesh random_soup(int vertex_count, int face_count, std::mt19937& 
     for (int k = 0; k < 3; ++k) mesh.faces(f, k) = pick(rng);
   }
   return mesh;
+}
+
+/// The pairs of `all` with a moved vertex of body `body` (flags per vertex): the reference for searches restricted to
+/// moved vertices, from the unrestricted brute-force pairs.
+inline broadphase::CandidateSet pairs_touching_moved(const broadphase::CandidateSet& all, int body,
+                                                     const broadphase::BodyTopology& topology,
+                                                     const std::vector<std::uint8_t>& moved) {
+  auto face_moved = [&](int f) {
+    return moved[topology.faces(f, 0)] || moved[topology.faces(f, 1)] || moved[topology.faces(f, 2)];
+  };
+  auto edge_moved = [&](int e) { return moved[topology.edges[2 * e]] || moved[topology.edges[2 * e + 1]]; };
+  broadphase::CandidateSet out;
+  for (const broadphase::VertexFaceCandidate& c : all.vertex_face) {
+    if ((c.vertex_body == body && moved[c.vertex]) || (c.face_body == body && face_moved(c.face))) {
+      out.vertex_face.push_back(c);
+    }
+  }
+  for (const broadphase::EdgeEdgeCandidate& c : all.edge_edge) {
+    if ((c.body_a == body && edge_moved(c.edge_a)) || (c.body_b == body && edge_moved(c.edge_b))) {
+      out.edge_edge.push_back(c);
+    }
+  }
+  return out;
 }
 
 }  // namespace clothcd::test

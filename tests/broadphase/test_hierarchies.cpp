@@ -12,6 +12,7 @@
 #include "broadphase_scenes.hpp"
 #include "broadphase/brute_force_candidates.hpp"
 #include "broadphase/candidates.hpp"
+#include "broadphase/collecting_sink.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
@@ -230,31 +231,6 @@ TEST_CASE("unsupported hierarchy pairs are rejected", "[broadphase]") {
   CHECK_THROWS_AS(find_self_candidates(a.view(0), {}, out), std::invalid_argument);
 }
 
-namespace {
-
-// The pairs of `all` with a moved vertex of body `body` (the reference for searches restricted to moved vertices).
-CandidateSet touching(const CandidateSet& all, int body, const BodyTopology& topology,
-                      const std::vector<std::uint8_t>& moved) {
-  auto face_moved = [&](int f) {
-    return moved[topology.faces(f, 0)] || moved[topology.faces(f, 1)] || moved[topology.faces(f, 2)];
-  };
-  auto edge_moved = [&](int e) { return moved[topology.edges[2 * e]] || moved[topology.edges[2 * e + 1]]; };
-  CandidateSet out;
-  for (const VertexFaceCandidate& c : all.vertex_face) {
-    if ((c.vertex_body == body && moved[c.vertex]) || (c.face_body == body && face_moved(c.face))) {
-      out.vertex_face.push_back(c);
-    }
-  }
-  for (const EdgeEdgeCandidate& c : all.edge_edge) {
-    if ((c.body_a == body && edge_moved(c.edge_a)) || (c.body_b == body && edge_moved(c.edge_b))) {
-      out.edge_edge.push_back(c);
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 TEST_CASE("searches restricted to moved vertices return exactly the brute-force pairs touching them",
           "[broadphase][brute-force][moved]") {
   const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
@@ -263,7 +239,6 @@ TEST_CASE("searches restricted to moved vertices return exactly the brute-force 
   // Shares below 1 / kMovedQueryShare take the primitive queries, the others the restricted descent.
   const double moved_share = GENERATE(0.0, 0.02, 0.04, 0.3, 1.0);
   const bool parallel = GENERATE(false, true);
-  const bool wide = GENERATE(false, true);
   std::mt19937 rng(11);
   const TriangleMesh cloth = draped_cloth(12);
   const TriangleMesh obstacle = make_uv_sphere(1.0, 12, 7);
@@ -276,25 +251,31 @@ TEST_CASE("searches restricted to moved vertices return exactly the brute-force 
   INFO("moved " << moved_count << " of " << moved.size());
   if (moved_share > 0.0 && moved_share < 0.05) REQUIRE(moved_count * kMovedQueryShare <= moved.size());
   if (moved_share >= 0.3) REQUIRE(moved_count * kMovedQueryShare > moved.size());
-  TraversalSettings restricted{parallel, &moved, wide};
+  const TraversalSettings restricted{parallel, &moved};
 
-  CandidateSet all, found;
+  CandidateSet all, pair_all;
   brute_force_self_candidates(cloth_body.view(0), all);
-  find_self_candidates(cloth_body.view(0), restricted, found);
-  const CandidateSet self_reference = touching(all, 0, cloth_body.topology, moved);
-  if (moved_share > 0.0) REQUIRE(self_reference.size() > 0);
-  CHECK_FALSE(has_duplicates(sorted(found)));
-  check_same(sorted(found), sorted(self_reference));
-
-  CandidateSet pair_all, pair_found;
   brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), pair_all);
-  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), restricted, pair_found);
-  const CandidateSet pair_reference = touching(pair_all, 0, cloth_body.topology, moved);
+  const CandidateSet self_reference = pairs_touching_moved(all, 0, cloth_body.topology, moved);
+  const CandidateSet pair_reference = pairs_touching_moved(pair_all, 0, cloth_body.topology, moved);
+  if (moved_share > 0.0) REQUIRE(self_reference.size() > 0);
   if (moved_share > 0.0) REQUIRE(pair_reference.size() > 0);
-  check_same(sorted(pair_found), sorted(pair_reference));
+  // Every SIMD level the CPU runs (four-lane leaf and primitive tests on the baseline, eight from AVX2 up).
+  for (const SimdLevel level : cpu_simd_levels()) {
+    INFO("level " << simd_level_name(level));
+    test::SimdLimit capped(level);
+    CandidateSet found;
+    find_self_candidates(cloth_body.view(0), restricted, found);
+    CHECK_FALSE(has_duplicates(sorted(found)));
+    check_same(sorted(found), sorted(self_reference));
+    CandidateSet pair_found;
+    find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), restricted, pair_found);
+    check_same(sorted(pair_found), sorted(pair_reference));
+  }
 
   std::vector<std::uint8_t> wrong_size(3, 1);
-  CHECK_THROWS_AS(find_self_candidates(cloth_body.view(0), {parallel, &wrong_size}, found), std::invalid_argument);
+  CandidateSet out;
+  CHECK_THROWS_AS(find_self_candidates(cloth_body.view(0), {parallel, &wrong_size}, out), std::invalid_argument);
 }
 
 TEST_CASE("a hierarchy needs only the vertex boxes and refuses a wrong count", "[broadphase][refit]") {

@@ -1,19 +1,21 @@
-// The streamed searches (candidates handed to a sink in chunks, large node pairs searched as tasks of their own) find
-// exactly the pairs of the collecting searches, which the brute-force tests check: self and pair searches, serial and
-// parallel, of every chunk size, unrestricted and restricted to moved vertices (both restricted paths).
+// The searches hand exactly the brute-force pairs to their sink, on one thread and on several (large node pairs
+// searched as tasks of their own), in chunks of every size: self and pair searches, unrestricted and restricted to
+// moved vertices (both restricted paths), and with a sink that waits for parallel work of its own.
 #include <catch2/catch.hpp>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <mutex>
 #include <random>
 #include <vector>
 
 #include "broadphase_scenes.hpp"
+#include "broadphase/brute_force_candidates.hpp"
 #include "broadphase/candidates.hpp"
+#include "broadphase/collecting_sink.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 
 using namespace clothcd;
@@ -22,22 +24,21 @@ using namespace clothcd::test;
 
 namespace {
 
-// Collects the chunks a search hands over (from any thread) and the largest chunk seen.
-class CollectingSink final : public CandidateSink {
+// Collects the chunks a search hands over (from any thread) and checks their sizes: none empty, the largest kept.
+class CheckedSink final : public CandidateSink {
  public:
   void consume(const CandidateSet& chunk) override {
-    std::lock_guard<std::mutex> lock(mutex_);
-    CHECK(chunk.size() > 0);
-    largest = std::max(largest, chunk.size());
-    found.vertex_face.insert(found.vertex_face.end(), chunk.vertex_face.begin(), chunk.vertex_face.end());
-    found.edge_edge.insert(found.edge_edge.end(), chunk.edge_edge.begin(), chunk.edge_edge.end());
+    if (chunk.size() == 0) empty_chunks.fetch_add(1);
+    std::size_t seen = largest.load();
+    while (chunk.size() > seen && !largest.compare_exchange_weak(seen, chunk.size())) {
+    }
+    collecting.consume(chunk);
   }
 
   CandidateSet found;
-  std::size_t largest = 0;
-
- private:
-  std::mutex mutex_;
+  CollectingSink collecting{found};
+  std::atomic<std::size_t> largest{0};
+  std::atomic<int> empty_chunks{0};
 };
 
 // A sink that waits for TBB work of its own in every call, as a culler or an observer may: while it waits, its thread
@@ -50,10 +51,10 @@ class WaitingSink final : public CandidateSink {
       while (std::chrono::steady_clock::now() < until) {
       }
     });
-    collecting.consume(chunk);
+    checked.consume(chunk);
   }
 
-  CollectingSink collecting;
+  CheckedSink checked;
 };
 
 CandidateSet sorted(CandidateSet set) {
@@ -78,7 +79,7 @@ TriangleMesh folded_sheet(int n) {
 
 }  // namespace
 
-TEST_CASE("streamed searches find exactly the collected searches' pairs", "[broadphase][stream]") {
+TEST_CASE("streamed searches find exactly the brute-force pairs, serial and parallel", "[broadphase][stream]") {
   const bool spheres = GENERATE(false, true);
   const bool parallel = GENERATE(false, true);
   const std::size_t chunk = GENERATE(std::size_t{1}, std::size_t{50}, std::size_t{1024});
@@ -93,27 +94,39 @@ TEST_CASE("streamed searches find exactly the collected searches' pairs", "[broa
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(cloth_body.topology.vertex_count));
   std::bernoulli_distribution pick(std::max(moved_share, 0.0));
   for (auto& m : moved) m = pick(rng) ? 1 : 0;
-  TraversalSettings settings{parallel, moved_share >= 0.0 ? &moved : nullptr};
+  const bool restricted = moved_share >= 0.0;
+  if (restricted) {  // both restricted paths: the primitive queries (few moved) and the restricted descent
+    const auto moved_count = static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+    CHECK((moved_count * kMovedQueryShare <= moved.size()) == (moved_share < 1.0 / kMovedQueryShare));
+  }
+  TraversalSettings settings{parallel, restricted ? &moved : nullptr};
   settings.chunk_pairs = chunk;
 
-  CandidateSet self_collected;
-  find_self_candidates(cloth_body.view(0), settings, self_collected);
-  REQUIRE(self_collected.size() > 0);
-  CollectingSink self_sink;
+  CandidateSet self_reference, pair_reference;
+  brute_force_self_candidates(cloth_body.view(0), self_reference);
+  brute_force_pair_candidates(cloth_body.view(0), obstacle_body.view(1), pair_reference);
+  if (restricted) {
+    self_reference = pairs_touching_moved(self_reference, 0, cloth_body.topology, moved);
+    pair_reference = pairs_touching_moved(pair_reference, 0, cloth_body.topology, moved);
+  }
+  REQUIRE(self_reference.size() > 0);
+  REQUIRE(pair_reference.size() > 0);
+
+  CheckedSink self_sink;
   TraversalStats stats;
   find_self_candidates(cloth_body.view(0), settings, self_sink, &stats);
-  check_same(sorted(self_sink.found), sorted(self_collected));
+  check_same(sorted(self_sink.found), sorted(self_reference));
   CHECK(stats.task_ms > 0.0);
 
-  CandidateSet pair_collected;
-  find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), settings, pair_collected);
-  REQUIRE(pair_collected.size() > 0);
-  CollectingSink pair_sink;
+  CheckedSink pair_sink;
   find_pair_candidates(cloth_body.view(0), obstacle_body.view(1), settings, pair_sink);
-  check_same(sorted(pair_sink.found), sorted(pair_collected));
+  check_same(sorted(pair_sink.found), sorted(pair_reference));
 
-  // A chunk holds at most `chunk` pairs plus those of one leaf pair (32-face leaves: well below 8,000 pairs).
-  CHECK(std::max(self_sink.largest, pair_sink.largest) < chunk + 8000);
+  // No chunk is empty, and one holds at most `chunk` pairs plus those of one leaf pair (32-face leaves: well below
+  // 8,000 pairs).
+  CHECK(self_sink.empty_chunks == 0);
+  CHECK(pair_sink.empty_chunks == 0);
+  CHECK(std::max(self_sink.largest.load(), pair_sink.largest.load()) < chunk + 8000);
 
   settings.chunk_pairs = 0;
   CHECK_THROWS_AS(find_self_candidates(cloth_body.view(0), settings, self_sink), std::invalid_argument);
@@ -125,10 +138,11 @@ TEST_CASE("a streamed search stays exact when its sink waits for parallel work",
   TestBody cloth_body(cloth, jitter(cloth.vertices, 0.03, rng), 0.01, {VolumeKind::Aabb, 32});
   TraversalSettings settings{true, nullptr};
   settings.chunk_pairs = 16;
-  CandidateSet collected;
-  find_self_candidates(cloth_body.view(0), settings, collected);
-  REQUIRE(collected.size() > 1000);
+  CandidateSet reference;
+  brute_force_self_candidates(cloth_body.view(0), reference);
+  REQUIRE(reference.size() > 1000);
   WaitingSink sink;
   find_self_candidates(cloth_body.view(0), settings, sink);
-  check_same(sorted(sink.collecting.found), sorted(collected));
+  CHECK(sink.checked.empty_chunks == 0);
+  check_same(sorted(sink.checked.found), sorted(reference));
 }
