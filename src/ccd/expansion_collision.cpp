@@ -46,10 +46,10 @@ namespace clothcd::ccd::detail {
 
 namespace {
 
-constexpr int kMaxSpanBits = 180;      // binary orders of magnitude between the largest and the finest coordinate bit
-constexpr int kTimeBits = 150;         // every time used is a multiple of 2^-150
+constexpr int kMaxSpanBits = 180;        // binary orders of magnitude between the largest and the finest coordinate bit
+constexpr int kTimeBits = 150;           // every time used is a multiple of 2^-150
 constexpr int kMaxIsolationDepth = 120;  // Bernstein subdivision of [0, 1] for the roots (close roots need deep pieces)
-constexpr int kMaxRefinements = 40;     // bracket shrinking steps per sign
+constexpr int kMaxRefinements = 40;      // bracket shrinking steps per sign
 // Exact sign by pseudo-division when the bracket is narrow at the first step, or after this many narrow brackets that
 // exact Bernstein signs left undecided: a sign still undecided after two is most likely exactly zero, which only the
 // pseudo-division decides (measured on the handcrafted queries: 2 beats 1, 3, 4, 6 and never).
@@ -160,8 +160,7 @@ std::array<Number, 4> bernstein_coefficients(std::array<Number, 4> a, int n, con
 
 // The Bernstein signs from outward-rounded interval arithmetic on enclosures of the coefficients; false unless every
 // sign is certain (then the exact computation is skipped).
-bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width,
-                              BernsteinSigns& out) {
+bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width, BernsteinSigns& out) {
   std::array<Interval, 4> a;
   for (int i = 0; i <= n; ++i) a[static_cast<std::size_t>(i)] = enclose(p[static_cast<std::size_t>(i)]);
   const std::array<Interval, 4> b = bernstein_coefficients(
@@ -381,8 +380,9 @@ std::optional<PseudoDivision> pseudo_divide(Poly a, const Poly& b) {
     Poly next(static_cast<std::size_t>(na));
     for (int i = 0; i < na; ++i) {
       next[static_cast<std::size_t>(i)] = a[static_cast<std::size_t>(i)] * lead_b;
-      if (i >= na - nb) next[static_cast<std::size_t>(i)] =
-          next[static_cast<std::size_t>(i)] - lead * b[static_cast<std::size_t>(i - (na - nb))];
+      if (i >= na - nb)
+        next[static_cast<std::size_t>(i)] =
+            next[static_cast<std::size_t>(i)] - lead * b[static_cast<std::size_t>(i - (na - nb))];
     }
     a = next;
     // lc(b)^(k+1) a0 = (lc(b) q + lead x^(na - nb)) b + next.
@@ -407,7 +407,7 @@ std::optional<int> linear_sign_at_root(const Candidate& c, const Poly& l, const 
   if (*below_hi >= 0) return -slope;  // t* < hi <= rho
   const std::optional<int> d_at_rho = sign_at_rational(d, num, den);
   if (!d_at_rho) return std::nullopt;
-  if (*d_at_rho == 0) return 0;                     // rho = t*, d's only root in the bracket
+  if (*d_at_rho == 0) return 0;                    // rho = t*, d's only root in the bracket
   return *d_at_rho == c.sign_lo ? slope : -slope;  // rho on lo's side of t*, or on hi's
 }
 
@@ -586,8 +586,7 @@ class System {
   int end_d_sign(int end) const {
     std::array<std::array<Expansion, 3>, 3> e;
     for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-        e[i][k] = Expansion::difference(c_[4 * end + i + 1][k], c_[4 * end][k]);
+      for (int k = 0; k < 3; ++k) e[i][k] = Expansion::difference(c_[4 * end + i + 1][k], c_[4 * end][k]);
     const auto minor = [&](int u, int v) { return e[1][u] * e[2][v] - e[1][v] * e[2][u]; };
     return (e[0][0] * minor(1, 2) - e[0][1] * minor(0, 2) + e[0][2] * minor(0, 1)).sign();
   }
@@ -733,8 +732,8 @@ class Predicate {
   // Whether the origin is in conv W at the candidate; nullopt when a sign could not be decided.
   std::optional<bool> holds() {
     bool result = true, strictly = false;
-    const double t = candidate_.rational ? candidate_.num.estimate() / candidate_.den.estimate()
-                                         : candidate_.lo.estimate();
+    const double t =
+        candidate_.rational ? candidate_.num.estimate() / candidate_.den.estimate() : candidate_.lo.estimate();
     const std::array<int, 3> axes =
         only_axis_ >= 0 ? std::array<int, 3>{only_axis_, only_axis_, only_axis_} : system_.axes_by_normal(t);
     const int axis_count = only_axis_ >= 0 ? 1 : 3;
