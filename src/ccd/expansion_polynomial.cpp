@@ -125,19 +125,6 @@ BernsteinSigns bernstein_signs(const Poly& p, int n, const Expansion& lo, const 
   return out;
 }
 
-int filtered_sign(const Poly& p, int n, double m, double distance, double& value) {
-  double magnitude = 0.0, slope = 0.0;
-  value = 0.0;
-  for (int i = n; i >= 0; --i) {
-    const double coefficient = p[static_cast<std::size_t>(i)].estimate();
-    value = value * m + coefficient;
-    magnitude += std::fabs(coefficient);
-    slope += i * std::fabs(coefficient);
-  }
-  const double bound = 1e-13 * magnitude + slope * (1.0 + 1e-13) * distance + 0x1p-1000;
-  return value > bound ? 1 : (value < -bound ? -1 : 0);
-}
-
 int sign_at_time(const Poly& p, const Expansion& t, double& estimate) {
   const int n = degree(p);
   const double m = t.estimate();

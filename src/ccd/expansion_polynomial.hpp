@@ -3,6 +3,7 @@
 // expansion tier of the thickness-0 CCD (expansion_collision.cpp): exact sums, differences, products and values, the
 // signs of their Bernstein coefficients on a piece, their signs at grid and rational times, and pseudo-division.
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <initializer_list>
 #include <optional>
@@ -61,8 +62,20 @@ struct BernsteinSigns {
 
 /// The sign of p (degree n >= 1) at every t in [0, 1] with |t - m| <= distance when plain double arithmetic on the
 /// rounded coefficients proves it, else 0: |p(t) - p~(m)| is below the coefficients' and the evaluation's rounding
-/// (relative 1e-13 of sum |p_i|) plus the largest slope on [0, 1] times the distance. Sets value to p~(m).
-[[nodiscard]] int filtered_sign(const Poly& p, int n, double m, double distance, double& value);
+/// (relative 1e-13 of sum |p_i|) plus the largest slope on [0, 1] times the distance. Sets value to p~(m). Inline:
+/// the first test of nearly every sign at a grid time or a bracketed root.
+[[nodiscard]] inline int filtered_sign(const Poly& p, int n, double m, double distance, double& value) {
+  double magnitude = 0.0, slope = 0.0;
+  value = 0.0;
+  for (int i = n; i >= 0; --i) {
+    const double coefficient = p[static_cast<std::size_t>(i)].estimate();
+    value = value * m + coefficient;
+    magnitude += std::fabs(coefficient);
+    slope += i * std::fabs(coefficient);
+  }
+  const double bound = 1e-13 * magnitude + slope * (1.0 + 1e-13) * distance + 0x1p-1000;
+  return value > bound ? 1 : (value < -bound ? -1 : 0);
+}
 
 /// Exact sign of p at the grid time t (filtered first), with an estimate of p(t).
 int sign_at_time(const Poly& p, const Expansion& t, double& estimate);
