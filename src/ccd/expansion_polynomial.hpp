@@ -17,6 +17,7 @@ struct Poly {
   std::array<Expansion, 4> c;  ///< The coefficients c[0..n).
   std::size_t n = 0;           ///< Number of coefficients.
 
+  /// The zero polynomial (no coefficients).
   Poly() = default;
   /// The coefficients c[0], c[1], ... in order (at most 4).
   Poly(std::initializer_list<Expansion> coefficients) {
@@ -26,9 +27,13 @@ struct Poly {
   explicit Poly(std::size_t count) : n(count) {
     if (count > c.size()) throw ExpansionCapacityExceeded();
   }
+  /// Number of coefficients (zero ones included).
   [[nodiscard]] std::size_t size() const { return n; }
+  /// Whether there is no coefficient.
   [[nodiscard]] bool empty() const { return n == 0; }
+  /// Coefficient i (of t^i).
   Expansion& operator[](std::size_t i) { return c[i]; }
+  /// Coefficient i (of t^i).
   const Expansion& operator[](std::size_t i) const { return c[i]; }
 };
 

@@ -36,16 +36,16 @@ struct Candidate {
 /// time, on the way).
 [[nodiscard]] std::optional<int> sign_at(Candidate& c, const Poly& p);
 
-/// Appends the candidates for the roots of d (degree n >= 1) in (lo, hi), in increasing order; D(lo), D(hi) have the
+/// Appends the candidates for the roots of d (degree n >= 1) in (lo, hi), in increasing order; d(lo), d(hi) have the
 /// exact signs s_lo, s_hi, and depth is the subdivision depth of [lo, hi] (0 for [0, 1]). The candidates point to d.
 /// False on giving up.
 [[nodiscard]] bool isolate(const Poly& d, int n, const Expansion& lo, int s_lo, const Expansion& hi, int s_hi,
                            int depth, std::vector<Candidate>& out);
 
-/// A double not above the candidate's time and at most kToiBracket (plus a rounding) below it: within a few units in
-/// the last place of a grid or rational time, within kToiBracket of a bracketed root (the bracket is shrunk first,
-/// since the predicate may have held on a wide one). nullopt when the bracket does not shrink that far or a rational
-/// time has no such double found (the GMP reference then gives the time).
+/// A double not above the candidate's time and at most kToiBracket = 2^-24 (plus a rounding) below it: within a few
+/// units in the last place of a grid or rational time, within kToiBracket of a bracketed root (the bracket is shrunk
+/// first, since the predicate may have held on a wide one). nullopt when the bracket does not shrink that far or a
+/// rational time has no such double found (the GMP reference then gives the time).
 [[nodiscard]] std::optional<double> lower_bound(Candidate& c);
 
 /// Appends the candidates for the roots of p in [0, 1] (none when its degree is below 1); they point to p. A double
