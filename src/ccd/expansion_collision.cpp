@@ -4,25 +4,17 @@
 // for the whole step, ...).
 //
 // Same question: is the origin in conv W(t) at a root t of D(t) = det(x1 - x0, x2 - x0, x3 - x0)? All polynomials
-// (D, and the 2D cross and dot products of W in the three axis projections) get exact expansion coefficients. The
-// coordinates are first scaled by a power of two (no sign changes) below 1 in magnitude; when they then lie on the
-// dyadic grid 2^-180 and every time used lies on the grid 2^-150, every exact intermediate value (at most degree 3
-// in coordinates and times) is a multiple of 2^-990, so no expansion operation underflows and all signs are exact.
-// Higher-degree values (below) are range-checked first.
-//   - Roots of D in [0, 1]: Bernstein subdivision on grid times with exact signs; a piece whose Bernstein
-//     coefficients have no sign variation has no root, one variation with non-zero ends brackets exactly one
-//     (simple) root; a grid time where D is exactly zero is itself a candidate.
-//   - The sign of a polynomial P at a bracketed root t*: P's Bernstein coefficients on the bracket of one strict sign
-//     give it; otherwise the bracket shrinks (secant guess, then the exact signs of D on both sides of the guess).
-//     When P may vanish at t* (touching exactly, or missing by far less than rounding), the pseudo-division
-//     lc(P)^k D = Q P + R gives Q(t*) P(t*) = -R(t*); with Q and R at most linear, their signs at t* come from their
-//     rational roots placed against the bracket and t* (exact homogeneous evaluation, after scaling by powers of two).
+// (D, and the 2D cross and dot products of W in the three axis projections) get exact expansion coefficients
+// (expansion_polynomial.cpp). The coordinates are first scaled by a power of two (no sign changes) below 1 in
+// magnitude; when they then lie on the dyadic grid 2^-180 and every time used lies on the grid 2^-150, every exact
+// intermediate value (at most degree 3 in coordinates and times) is a multiple of 2^-990, so no expansion operation
+// underflows and all signs are exact. Higher-degree values are range-checked first.
+//   - Roots of D in [0, 1], and the sign of a polynomial at a bracketed root: expansion_roots.cpp.
 //   - A bracketed root where some sign is not filtered out is first tried as an exact rational time: the root of a
 //     linear D (or sign polynomial), or a time where two points have the same coordinate on one axis and D vanishes
 //     (the sliding and axis-aligned touching contacts). Signs at a rational time are exact homogeneous sums.
 //   - D identically zero (coplanar for the whole step): t = 0 first, then 1 and every root of every sign polynomial,
-//     earliest first; roots of linear and quadratic sign polynomials are bracketed on pieces where they are monotone
-//     (split at the vertex), a double root as the exact rational -p1 / (2 p2).
+//     earliest first (their roots bracketed by expansion_roots.cpp).
 // Signs are filtered first (double or interval arithmetic with a rigorous error bound), expansions only when the
 // filter cannot decide. The predicate at each candidate is the reference's (at t = 0 and 1 straight from the end
 // positions). The tier gives up (nullopt) when a sign stays undecided (a multiple root of D, a sign that needs a
@@ -39,459 +31,15 @@
 #include <vector>
 
 #include "ccd/expansion.hpp"
-#include "ccd/interval.hpp"
+#include "ccd/expansion_polynomial.hpp"
+#include "ccd/expansion_roots.hpp"
 #include "ccd/projected_triangle.hpp"
 
 namespace clothcd::ccd::detail {
 
 namespace {
 
-constexpr int kMaxSpanBits = 180;      // binary orders of magnitude between the largest and the finest coordinate bit
-constexpr int kTimeBits = 150;         // every time used is a multiple of 2^-150
-constexpr int kMaxIsolationDepth = 120;  // Bernstein subdivision of [0, 1] for the roots (close roots need deep pieces)
-constexpr int kMaxRefinements = 40;     // bracket shrinking steps per sign
-// Exact sign by pseudo-division when the bracket is narrow at the first step, or after this many narrow brackets that
-// exact Bernstein signs left undecided: a sign still undecided after two is most likely exactly zero, which only the
-// pseudo-division decides (measured on the handcrafted queries: 2 beats 1, 3, 4, 6 and never).
-constexpr int kSharedRootAttempt = 0;
-constexpr int kNarrowBracketsBeforeSharedRoot = 2;
-constexpr double kNarrowBracket = 1e-12;  // brackets are shrunk to this width before exact Bernstein signs
-constexpr double kToiBracket = 0x1p-24;   // a hit's bracket is shrunk to this width for its time of impact
-constexpr int kMaxToiRefinements = 64;
-
-// sum c[i] t^i, degree at most 3.
-struct Poly {
-  std::array<Expansion, 4> c;
-  std::size_t n = 0;  // number of coefficients
-
-  Poly() = default;
-  Poly(std::initializer_list<Expansion> coefficients) {
-    for (const Expansion& e : coefficients) c[n++] = e;
-  }
-  explicit Poly(std::size_t count) : n(count) {
-    if (count > c.size()) throw ExpansionCapacityExceeded();
-  }
-  [[nodiscard]] std::size_t size() const { return n; }
-  [[nodiscard]] bool empty() const { return n == 0; }
-  Expansion& operator[](std::size_t i) { return c[i]; }
-  const Expansion& operator[](std::size_t i) const { return c[i]; }
-};
-
-Poly operator+(const Poly& p, const Poly& q) {
-  Poly r(std::max(p.size(), q.size()));
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < p.size()) r[i] += p[i];
-    if (i < q.size()) r[i] += q[i];
-  }
-  return r;
-}
-
-Poly operator-(const Poly& p, const Poly& q) {
-  Poly r(std::max(p.size(), q.size()));
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < p.size()) r[i] += p[i];
-    if (i < q.size()) r[i] -= q[i];
-  }
-  return r;
-}
-
-Poly operator*(const Poly& p, const Poly& q) {
-  if (p.empty() || q.empty()) return {};
-  Poly r(p.size() + q.size() - 1);
-  for (std::size_t i = 0; i < p.size(); ++i)
-    for (std::size_t j = 0; j < q.size(); ++j) r[i + j] += p[i] * q[j];
-  return r;
-}
-
-int degree(const Poly& p) {
-  for (int i = static_cast<int>(p.size()) - 1; i >= 0; --i)
-    if (!p[static_cast<std::size_t>(i)].is_zero()) return i;
-  return -1;
-}
-
-Expansion evaluate(const Poly& p, const Expansion& t) {
-  Expansion r;
-  if (t.is_double(0.0)) return p.empty() ? r : p[0];
-  if (t.is_double(1.0)) {  // the sum of the coefficients, no products
-    for (std::size_t i = 0; i < p.size(); ++i) r += p[i];
-    return r;
-  }
-  for (std::size_t i = p.size(); i-- > 0;) r = r * t + p[i];
-  return r;
-}
-
-// Signs of the n + 1 Bernstein coefficients of a polynomial of degree n (at most 3) on a piece.
-struct BernsteinSigns {
-  std::array<int, 4> sign{};
-  int count = 0;
-};
-
-// An enclosure of e: its rounded sum is within 2^-44 of its value for up to 64 non-overlapping components.
-Interval enclose(const Expansion& e) {
-  const double value = e.estimate();
-  const double radius = std::fabs(value) * 0x1p-40;
-  return {value - radius, value + radius};
-}
-
-// The Bernstein coefficients (times positive constants) on [lo, lo + width] of sum a_i t^i of degree n in 0..3: the
-// Taylor coefficients at lo by repeated synthetic division, scaled by width^k, then combined. One algorithm for the
-// interval enclosures and the exact expansions; `times(x, c)` multiplies x by the small integer c.
-template <class Number, class Times>
-std::array<Number, 4> bernstein_coefficients(std::array<Number, 4> a, int n, const Number& lo, const Number& width,
-                                             const Times& times) {
-  for (int i = 0; i < n; ++i)
-    for (int j = n - 1; j >= i; --j) a[j] = a[j] + lo * a[j + 1];
-  Number power = width;
-  for (int k = 1; k <= n; ++k) {
-    a[k] = a[k] * power;
-    if (k < n) power = power * width;
-  }
-  switch (n) {
-    case 0:
-      return {a[0]};
-    case 1:
-      return {a[0], a[0] + a[1]};
-    case 2:
-      return {a[0], times(a[0], 2.0) + a[1], a[0] + a[1] + a[2]};
-    default:
-      return {a[0], times(a[0], 3.0) + a[1], times(a[0], 3.0) + times(a[1], 2.0) + a[2], a[0] + a[1] + a[2] + a[3]};
-  }
-}
-
-// The Bernstein signs from outward-rounded interval arithmetic on enclosures of the coefficients; false unless every
-// sign is certain (then the exact computation is skipped).
-bool filtered_bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width,
-                              BernsteinSigns& out) {
-  std::array<Interval, 4> a;
-  for (int i = 0; i <= n; ++i) a[static_cast<std::size_t>(i)] = enclose(p[static_cast<std::size_t>(i)]);
-  const std::array<Interval, 4> b = bernstein_coefficients(
-      a, n, enclose(lo), enclose(width), [](const Interval& x, double c) { return detail::scaled(x, c); });
-  out.count = n + 1;
-  for (int i = 0; i <= n; ++i) {
-    out.sign[static_cast<std::size_t>(i)] = certain_sign(b[static_cast<std::size_t>(i)]);
-    if (out.sign[static_cast<std::size_t>(i)] == 0) return false;
-  }
-  return true;
-}
-
-// Signs of the Bernstein coefficients (times positive constants) of p, of degree n in 0..3, on [lo, lo + width].
-BernsteinSigns bernstein_signs(const Poly& p, int n, const Expansion& lo, const Expansion& width) {
-  BernsteinSigns out;
-  if (n >= 1 && filtered_bernstein_signs(p, n, lo, width, out)) return out;
-  const std::array<Expansion, 4> b =
-      bernstein_coefficients(p.c, n, lo, width, [](const Expansion& x, double c) { return x.scaled(c); });
-  out.count = n + 1;
-  for (int i = 0; i <= n; ++i) out.sign[static_cast<std::size_t>(i)] = b[static_cast<std::size_t>(i)].sign();
-  return out;
-}
-
-int sign_variations(const BernsteinSigns& signs) {
-  int variations = 0, previous = 0;
-  for (int i = 0; i < signs.count; ++i) {
-    const int s = signs.sign[static_cast<std::size_t>(i)];
-    if (s == 0) continue;
-    if (previous != 0 && s != previous) ++variations;
-    previous = s;
-  }
-  return variations;
-}
-
-// base + offset rounded to the time grid.
-Expansion grid_point(const Expansion& base, double offset) {
-  // Scaling by the constant powers of two is exact here (like ldexp): offset 2^150 at worst overflows to infinity as
-  // ldexp would, and the rounded integer times 2^-150 is 0 or a normal double.
-  static_assert(kTimeBits == 150, "the scale factors below are 2^kTimeBits and 2^-kTimeBits");
-  return base + Expansion(std::nearbyint(offset * 0x1p150) * 0x1p-150);
-}
-
-bool strictly_between(const Expansion& lo, const Expansion& t, const Expansion& hi) {
-  return (t - lo).sign() > 0 && (hi - t).sign() > 0;
-}
-
-// A candidate time: the grid time lo (point), or the only root of a polynomial (D unless D is identically zero) in
-// the open (lo, hi), with the exact sign sign_lo at lo and the opposite sign at hi (both on the grid).
-struct Candidate {
-  bool point = false;
-  bool rational = false;  // the time num / den (den > 0), a double root of a quadratic sign polynomial
-  Expansion num, den;
-  Expansion lo, hi;
-  int sign_lo = 0;
-  const Poly* root_of = nullptr;  // the polynomial whose root is bracketed (D, or a sign polynomial when D == 0)
-  double d_lo = 0.0, d_hi = 0.0;  // estimates of root_of at lo and hi
-  bool bisect_next = false;
-  bool pin_tried = false;  // whether a rational alignment time was tried as the bracketed root
-};
-
-Candidate point_at(const Expansion& t) {
-  Candidate c;
-  c.point = true;
-  c.lo = c.hi = t;
-  return c;
-}
-
-// The sign of p (degree n >= 1) at every t in [0, 1] with |t - m| <= distance when plain double arithmetic on the
-// rounded coefficients proves it, else 0: |p(t) - p~(m)| is below the coefficients' and the evaluation's rounding
-// (relative 1e-13 of sum |p_i|) plus the largest slope on [0, 1] times the distance. Sets value to p~(m).
-int filtered_sign(const Poly& p, int n, double m, double distance, double& value) {
-  double magnitude = 0.0, slope = 0.0;
-  value = 0.0;
-  for (int i = n; i >= 0; --i) {
-    const double coefficient = p[static_cast<std::size_t>(i)].estimate();
-    value = value * m + coefficient;
-    magnitude += std::fabs(coefficient);
-    slope += i * std::fabs(coefficient);
-  }
-  const double bound = 1e-13 * magnitude + slope * (1.0 + 1e-13) * distance + 0x1p-1000;
-  return value > bound ? 1 : (value < -bound ? -1 : 0);
-}
-
-// The same at the bracketed root (m the bracket's middle, distance half its width plus the rounding of m).
-int filtered_sign(const Candidate& c, const Poly& p, int n) {
-  const double lo = c.lo.estimate(), hi = c.hi.estimate();
-  const double distance = 0.5 * (hi - lo) * (1.0 + 1e-10) + 1e-15 * (std::fabs(lo) + std::fabs(hi)) + 0x1p-1000;
-  double value;
-  return filtered_sign(p, n, 0.5 * (lo + hi), distance, value);
-}
-
-// Exact sign of p at the grid time t (filtered first), with an estimate of p(t).
-int sign_at_time(const Poly& p, const Expansion& t, double& estimate) {
-  const int n = degree(p);
-  const double m = t.estimate();
-  if (n >= 1) {
-    const int s = filtered_sign(p, n, m, 1e-15 * std::fabs(m) + 0x1p-1000, estimate);
-    if (s != 0) return s;
-  }
-  const Expansion value = evaluate(p, t);
-  estimate = value.estimate();
-  return value.sign();
-}
-
-// Shrinks the bracket (or finds the root on the grid). False when it cannot.
-bool refine(Candidate& c, const Poly& d) {
-  const Expansion width = c.hi - c.lo;
-  const double w = width.estimate();
-  double f = c.d_lo / (c.d_lo - c.d_hi);  // secant guess of the root's position in the bracket
-  if (c.bisect_next || !(f > 0.0 && f < 1.0)) f = 0.5;
-  const double spread = c.bisect_next ? 0.0 : 0x1p-16;
-  const Expansion a = grid_point(c.lo, w * std::max(f - spread, 0.25 * f));
-  const Expansion b = spread == 0.0 ? a : grid_point(c.lo, w * std::min(f + spread, f + 0.75 * (1.0 - f)));
-  if (!strictly_between(c.lo, a, c.hi) || !strictly_between(c.lo, b, c.hi) || (b - a).sign() < 0) {
-    if (c.bisect_next) return false;
-    c.bisect_next = true;
-    return refine(c, d);
-  }
-  double da = 0.0, db = 0.0;
-  const int sa = sign_at_time(d, a, da);
-  if (sa == 0) {
-    c = point_at(a);
-    return true;
-  }
-  const int sb = spread == 0.0 ? sa : sign_at_time(d, b, db);
-  if (spread == 0.0) db = da;
-  if (sb == 0) {
-    c = point_at(b);
-    return true;
-  }
-  if (sa != c.sign_lo) {
-    c.hi = a;
-    c.d_hi = da;
-  } else if (sb != c.sign_lo) {
-    c.lo = a;
-    c.d_lo = da;
-    c.hi = b;
-    c.d_hi = db;
-  } else {
-    c.lo = b;
-    c.d_lo = db;
-  }
-  c.bisect_next = !c.bisect_next && (c.hi - c.lo).estimate() > 0.5 * w;
-  return true;
-}
-
-// Binary exponent range of non-zero expansions.
-struct BitRange {
-  int bottom = INT_MAX, top = INT_MIN;
-  void add(const Expansion& e) {
-    if (e.is_zero()) return;
-    bottom = std::min(bottom, e.bottom_exponent());
-    top = std::max(top, e.top_exponent());
-  }
-  [[nodiscard]] int centring_shift() const { return -(top + bottom) / 2; }
-  [[nodiscard]] int half_width() const { return (top - bottom) / 2 + 2; }
-};
-
-// Exact sign of p at the rational num / den (den != 0): the sign of sum p_i num^i den^(n - i), times sign(den)^n.
-// num and den are scaled by one power of two, and so are p's coefficients, to centre their exponents on 0; nullopt
-// when the products could still leave the double exponent range.
-std::optional<int> sign_at_rational(const Poly& p, Expansion num, Expansion den) {
-  const int n = degree(p);
-  if (n <= 0) return n < 0 ? 0 : p[0].sign();
-  {
-    // Filter: p(r) in double at r = num / den rounded (the estimates of up to 64 non-overlapping components are within
-    // 2^-47, so r within 2^-45); the coefficients' rounding, r's and Horner's errors stay below 2^-40 of
-    // sum |p_i| |r|^i for degree <= 3. Non-finite values fall through to the exact sum.
-    const double r = num.estimate() / den.estimate();
-    double value = 0.0, magnitude = 0.0;
-    for (int i = n; i >= 0; --i) {
-      const double coefficient = p[static_cast<std::size_t>(i)].estimate();
-      value = value * r + coefficient;
-      magnitude = magnitude * std::fabs(r) + std::fabs(coefficient);
-    }
-    const double bound = magnitude * 0x1p-40 + 0x1p-1000;
-    if (std::isfinite(value) && std::isfinite(bound) && std::fabs(value) > bound) return value > 0.0 ? 1 : -1;
-  }
-  BitRange t_range, p_range;
-  t_range.add(num);
-  t_range.add(den);
-  for (int i = 0; i <= n; ++i) p_range.add(p[static_cast<std::size_t>(i)]);
-  if (n * t_range.half_width() + p_range.half_width() + 8 > 1000) return std::nullopt;
-  num = num.times_power_of_two(t_range.centring_shift()).compressed();
-  den = den.times_power_of_two(t_range.centring_shift()).compressed();
-  // sum = den^n p(num / den) by Horner's rule in homogeneous form: s <- s num + p_i den^(n - i), from s = p_n.
-  const auto coefficient = [&](int i) {
-    return p[static_cast<std::size_t>(i)].times_power_of_two(p_range.centring_shift());
-  };
-  Expansion sum = coefficient(n);
-  Expansion den_power(1.0);
-  for (int i = n - 1; i >= 0; --i) {
-    den_power = den_power * den;
-    sum = sum * num + coefficient(i) * den_power;
-  }
-  return n % 2 == 1 && den.sign() < 0 ? -sum.sign() : sum.sign();
-}
-
-// Pseudo-division of a by b (degree of b >= 1): lc(b)^k a = q b + r with r of degree below b's; nullopt when the
-// products could leave the double exponent range.
-struct PseudoDivision {
-  Poly quotient, remainder;
-};
-
-std::optional<PseudoDivision> pseudo_divide(Poly a, const Poly& b) {
-  const int nb = degree(b);
-  BitRange a_range, b_range;
-  for (std::size_t i = 0; i < a.size(); ++i) a_range.add(a[i]);
-  for (std::size_t i = 0; i < b.size(); ++i) b_range.add(b[i]);
-  const int steps = degree(a) - nb + 1;
-  if (a_range.bottom + steps * b_range.bottom < -1000 || a_range.top + steps * (b_range.top + 2) > 1000)
-    return std::nullopt;
-  const Expansion& lead_b = b[static_cast<std::size_t>(nb)];
-  Poly q(static_cast<std::size_t>(std::max(degree(a) - nb + 1, 1)));
-  for (int na = degree(a); na >= nb; na = degree(a)) {
-    const Expansion lead = a[static_cast<std::size_t>(na)];
-    Poly next(static_cast<std::size_t>(na));
-    for (int i = 0; i < na; ++i) {
-      next[static_cast<std::size_t>(i)] = a[static_cast<std::size_t>(i)] * lead_b;
-      if (i >= na - nb) next[static_cast<std::size_t>(i)] =
-          next[static_cast<std::size_t>(i)] - lead * b[static_cast<std::size_t>(i - (na - nb))];
-    }
-    a = next;
-    // lc(b)^(k+1) a0 = (lc(b) q + lead x^(na - nb)) b + next.
-    for (std::size_t i = 0; i < q.size(); ++i) q[i] = q[i] * lead_b;
-    q[static_cast<std::size_t>(na - nb)] = q[static_cast<std::size_t>(na - nb)] + lead;
-  }
-  return PseudoDivision{q, a};
-}
-
-// Exact sign of l (degree at most 1) at the root t* of d bracketed by the candidate: l's root rho = num / den is
-// placed against the bracket, and inside it against t* by the exact sign of d at rho.
-std::optional<int> linear_sign_at_root(const Candidate& c, const Poly& l, const Poly& d) {
-  const int n = degree(l);
-  if (n <= 0) return n < 0 ? 0 : l[0].sign();
-  const Expansion num = -l[0], den = l[1];
-  const int slope = l[1].sign();
-  const std::optional<int> above_lo = sign_at_rational(Poly{-c.lo, Expansion(1.0)}, num, den);
-  if (!above_lo) return std::nullopt;
-  if (*above_lo <= 0) return slope;  // rho <= lo < t*
-  const std::optional<int> below_hi = sign_at_rational(Poly{-c.hi, Expansion(1.0)}, num, den);
-  if (!below_hi) return std::nullopt;
-  if (*below_hi >= 0) return -slope;  // t* < hi <= rho
-  const std::optional<int> d_at_rho = sign_at_rational(d, num, den);
-  if (!d_at_rho) return std::nullopt;
-  if (*d_at_rho == 0) return 0;                     // rho = t*, d's only root in the bracket
-  return *d_at_rho == c.sign_lo ? slope : -slope;  // rho on lo's side of t*, or on hi's
-}
-
-// The sign of p at the bracketed root t* of d when p may vanish there (the bracket could not separate them). With
-// lc(p)^k d = q p + r, q(t*) p(t*) = -r(t*); q and r are at most linear when p has degree 2 or deg d - 1, and their
-// signs at t* are exact (linear_sign_at_root).
-std::optional<int> sign_at_shared_root(const Candidate& c, const Poly& p, const Poly& d) {
-  const int np = degree(p), nd = degree(d);
-  if (nd == 1) return sign_at_rational(p, -d[0], d[1]);
-  if (np == 1) return linear_sign_at_root(c, p, d);
-  const std::optional<PseudoDivision> division = pseudo_divide(d, p);
-  if (!division) return std::nullopt;
-  const Poly& r = division->remainder;
-  if (degree(r) < 0) {
-    // p divides lc(p)^k d: p's roots in the bracket are roots of d, so t* is p's only possible root there.
-    const int at_lo = evaluate(p, c.lo).sign(), at_hi = evaluate(p, c.hi).sign();
-    return at_lo * at_hi < 0 ? 0 : at_lo;
-  }
-  if (degree(division->quotient) > 1 || degree(r) > 1) return std::nullopt;
-  const std::optional<int> q_sign = linear_sign_at_root(c, division->quotient, d);
-  const std::optional<int> r_sign = linear_sign_at_root(c, r, d);
-  if (!q_sign || !r_sign || *q_sign == 0) return std::nullopt;
-  return -*r_sign * *q_sign;
-}
-
-// Exact sign of p at the candidate, or nullopt when it cannot be decided.
-std::optional<int> sign_at(Candidate& c, const Poly& p) {
-  const int n = degree(p);
-  if (n <= 0) return n < 0 ? 0 : p[0].sign();
-  if (c.rational) return sign_at_rational(p, c.num, c.den);
-  double estimate = 0.0;
-  if (c.point) return sign_at_time(p, c.lo, estimate);
-  const Poly& d = *c.root_of;
-  int narrow_brackets = 0;
-  for (int step = 0; step <= kMaxRefinements; ++step) {
-    if (c.point) return sign_at_time(p, c.lo, estimate);
-    if (const int s = filtered_sign(c, p, n); s != 0) return s;
-    if ((c.hi - c.lo).estimate() > kNarrowBracket && refine(c, d)) continue;  // cheaper than exact signs on it
-    ++narrow_brackets;
-    const BernsteinSigns signs = bernstein_signs(p, n, c.lo, c.hi - c.lo);
-    bool positive = true, negative = true;
-    for (int i = 0; i < signs.count; ++i) {
-      const int s = signs.sign[static_cast<std::size_t>(i)];
-      positive = positive && s > 0;
-      negative = negative && s < 0;
-    }
-    if (positive) return 1;
-    if (negative) return -1;
-    if (degree(d) == 1 || step == kSharedRootAttempt || narrow_brackets == kNarrowBracketsBeforeSharedRoot) {
-      const std::optional<int> shared = sign_at_shared_root(c, p, d);
-      if (shared || degree(d) == 1) return shared;
-    }
-    if (!refine(c, d)) break;
-  }
-  if (c.point) return sign_at_time(p, c.lo, estimate);
-  return sign_at_shared_root(c, p, d);
-}
-
-// Candidates in (lo, hi) in increasing order; D(lo), D(hi) have the exact signs s_lo, s_hi. False on giving up.
-bool isolate(const Poly& d, int n, const Expansion& lo, int s_lo, const Expansion& hi, int s_hi, int depth,
-             std::vector<Candidate>& out) {
-  const Expansion width = hi - lo;
-  const int variations = sign_variations(bernstein_signs(d, n, lo, width));
-  if (variations == 0) return true;
-  if (variations == 1 && s_lo != 0 && s_hi != 0) {
-    Candidate c;
-    c.lo = lo;
-    c.hi = hi;
-    c.sign_lo = s_lo;
-    c.root_of = &d;
-    sign_at_time(d, lo, c.d_lo);  // estimates of the right sign (filtered, else exact)
-    sign_at_time(d, hi, c.d_hi);
-    out.push_back(c);
-    return true;
-  }
-  if (depth >= kMaxIsolationDepth) return false;
-  const Expansion mid = grid_point(lo, 0.5 * width.estimate());
-  if (!strictly_between(lo, mid, hi)) return false;
-  double estimate = 0.0;
-  const int s_mid = sign_at_time(d, mid, estimate);
-  if (!isolate(d, n, lo, s_lo, mid, s_mid, depth + 1, out)) return false;
-  if (s_mid == 0) out.push_back(point_at(mid));
-  return isolate(d, n, mid, s_mid, hi, s_hi, depth + 1, out);
-}
+constexpr int kMaxSpanBits = 180;  // binary orders of magnitude between the largest and the finest coordinate bit
 
 // The query's coordinates times one power of two, all below 1 in magnitude and on the grid 2^-kMaxSpanBits.
 std::optional<std::array<std::array<double, 3>, 8>> scaled_coordinates(const CcdQuery& query) {
@@ -586,8 +134,7 @@ class System {
   int end_d_sign(int end) const {
     std::array<std::array<Expansion, 3>, 3> e;
     for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-        e[i][k] = Expansion::difference(c_[4 * end + i + 1][k], c_[4 * end][k]);
+      for (int k = 0; k < 3; ++k) e[i][k] = Expansion::difference(c_[4 * end + i + 1][k], c_[4 * end][k]);
     const auto minor = [&](int u, int v) { return e[1][u] * e[2][v] - e[1][v] * e[2][u]; };
     return (e[0][0] * minor(1, 2) - e[0][1] * minor(0, 2) + e[0][2] * minor(0, 1)).sign();
   }
@@ -733,8 +280,8 @@ class Predicate {
   // Whether the origin is in conv W at the candidate; nullopt when a sign could not be decided.
   std::optional<bool> holds() {
     bool result = true, strictly = false;
-    const double t = candidate_.rational ? candidate_.num.estimate() / candidate_.den.estimate()
-                                         : candidate_.lo.estimate();
+    const double t =
+        candidate_.rational ? candidate_.num.estimate() / candidate_.den.estimate() : candidate_.lo.estimate();
     const std::array<int, 3> axes =
         only_axis_ >= 0 ? std::array<int, 3>{only_axis_, only_axis_, only_axis_} : system_.axes_by_normal(t);
     const int axis_count = only_axis_ >= 0 ? 1 : 3;
@@ -802,97 +349,6 @@ class Predicate {
   std::array<std::array<std::array<int, 4>, 4>, 3> dot_{};
 };
 
-// The largest double not above t (t in [0, 1]).
-double lower_bound(const Expansion& t) {
-  double value = t.estimate();
-  if ((t - Expansion(value)).sign() < 0) value = std::nextafter(value, 0.0);
-  return std::max(value, 0.0);
-}
-
-// A double not above the candidate's time and at most kToiBracket (plus a rounding) below it: within a few units in the
-// last place of a grid or rational time, within kToiBracket of a bracketed root (the bracket is shrunk first, since the
-// predicate may have held on a wide one). nullopt when the bracket does not shrink that far or a rational time has no
-// such double found (the GMP reference then gives the time).
-std::optional<double> lower_bound(Candidate& c) {
-  for (int i = 0; i < kMaxToiRefinements && !c.point && !c.rational && (c.hi - c.lo).estimate() > kToiBracket; ++i)
-    if (!refine(c, *c.root_of)) break;
-  if (!c.rational) {
-    if (!c.point && !((c.hi - c.lo).estimate() <= kToiBracket)) return std::nullopt;
-    return lower_bound(c.lo);
-  }
-  double value = c.num.estimate() / c.den.estimate();
-  // value >= 2^-200 keeps the exact product den * value far above the underflow threshold.
-  for (int attempt = 0; attempt < 8 && value >= 0x1p-200; ++attempt, value = std::nextafter(value, 0.0))
-    if ((c.num - c.den.scaled(value)).sign() >= 0) return std::min(value, 1.0);
-  if (c.num.sign() == 0) return 0.0;
-  return std::nullopt;
-}
-
-// Candidates for the roots of p (degree n >= 1) in [0, 1]: a double root of a quadratic (zero discriminant) is the
-// rational -p1 / (2 p2), which bisection could never bracket; other roots are simple, bracketed by the end signs of
-// pieces where p is monotone (linear p, a quadratic on either side of its vertex), else isolated on the grid.
-bool add_roots(const Poly& p, std::vector<Candidate>& out) {
-  const int n = degree(p);
-  if (n < 1) return true;
-  const Expansion zero(0.0), one(1.0);
-  if (n == 2) {
-    const int discriminant = (p[1] * p[1] - (p[0] * p[2]).scaled(4.0)).sign();
-    if (discriminant < 0) return true;
-    if (discriminant == 0) {
-      Candidate c;
-      c.rational = true;
-      const bool negate = p[2].sign() < 0;
-      c.num = negate ? p[1] : -p[1];
-      c.den = negate ? -p[2].scaled(2.0) : p[2].scaled(2.0);
-      if (c.num.sign() >= 0 && (c.den - c.num).sign() >= 0) out.push_back(c);
-      return true;
-    }
-  }
-  // Where p is monotone on a piece, its end signs give its roots there directly; bisection would instead follow a
-  // root just outside [0, 1] (or two roots 1e-16 apart) down to the grid.
-  double at_0 = 0.0, at_1 = 0.0;
-  const int s_0 = sign_at_time(p, zero, at_0), s_1 = sign_at_time(p, one, at_1);
-  const auto monotone_piece = [&](const Expansion& lo, int s_lo, double d_lo, const Expansion& hi, int s_hi,
-                                  double d_hi) {
-    if (s_lo == 0) out.push_back(point_at(lo));
-    if (s_lo * s_hi < 0) {
-      Candidate c;
-      c.lo = lo;
-      c.hi = hi;
-      c.sign_lo = s_lo;
-      c.root_of = &p;
-      c.d_lo = d_lo;
-      c.d_hi = d_hi;
-      out.push_back(c);
-    }
-  };
-  const auto finish = [&] {
-    if (s_1 == 0) out.push_back(point_at(one));
-    return true;
-  };
-  if (n == 1) {
-    monotone_piece(zero, s_0, at_0, one, s_1, at_1);
-    return finish();
-  }
-  if (n == 2) {
-    // p' = p1 + 2 p2 t: of one sign on (0, 1) when p'(0) and p'(1) do not have strictly opposite signs.
-    if (p[1].sign() * (p[1] + p[2].scaled(2.0)).sign() >= 0) {
-      monotone_piece(zero, s_0, at_0, one, s_1, at_1);
-      return finish();
-    }
-    // The vertex -p1 / (2 p2) is inside (0, 1): a grid time g near it where p has the sign opposite to p2 lies
-    // between the two roots, so p is monotone on [0, g] and on [g, 1] as far as roots go (one root at most each).
-    const Expansion g = grid_point(zero, -p[1].estimate() / p[2].scaled(2.0).estimate());
-    double at_g = 0.0;
-    if (strictly_between(zero, g, one) && sign_at_time(p, g, at_g) == -p[2].sign()) {
-      monotone_piece(zero, s_0, at_0, g, -p[2].sign(), at_g);
-      monotone_piece(g, -p[2].sign(), at_g, one, s_1, at_1);
-      return finish();
-    }
-  }
-  return isolate(p, n, zero, s_0, one, s_1, 0, out);
-}
-
 // With D identically zero, an axis k whose projection maps the plane of W (and the origin) one to one at every time
 // of the step, or -1: when the Bernstein coefficients of the normal's component N_k (System::normal) on [0, 1] all
 // have one strict sign, N_k never vanishes, so the projection is one to one on the plane and no projected triangle of
@@ -910,12 +366,6 @@ int fixed_projection_axis(System& system) {
     if (one_sign) return k;
   }
   return -1;
-}
-
-// Whether the candidate's time (every time of its bracket) is at or after the time t.
-bool not_before(const Candidate& c, double t) {
-  if (c.rational) return (c.num - c.den.scaled(t)).sign() >= 0;
-  return (c.lo - Expansion(t)).sign() >= 0;
 }
 
 // D identically zero: W and the origin are coplanar at every time. The set of times where the origin is in conv W is
