@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// A bounding volume hierarchy over the triangles of one body, with AABB, sphere or OBB nodes, built top-down once and
-/// refitted bottom-up every step; it is rebuilt when refitting has made it much looser than when it was built (the build
-/// in bvh_build.cpp, the refit and the rebuild rule in bvh_refit.cpp).
+/// refitted bottom-up every step; it is rebuilt when refitting has made it much looser than when it was built (the
+/// build in bvh_build.cpp, the refit and the rebuild rule in bvh_refit.cpp).
 
 #include <cstdint>
 #include <vector>
