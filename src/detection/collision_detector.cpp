@@ -1,31 +1,31 @@
 // The detector of a simulation step (Jin et al., section 3): swept boxes and hierarchy refit (section 3.2), candidate
 // search of cloth vs obstacles and cloth vs itself, culling by the algebraic non-penetration and spatial projection
 // filters (sections 2.2, 2.3) or by a culler such as the pair network behind the filters (section 3.3), then the
-// exact-safe continuous collision test of every surviving pair. The candidates are not stored: each search thread
-// culls and tests them block by block as it finds them (pair_pipeline.hpp), and only the collisions are kept, within
-// the collision budget. In parts: the bodies and their hierarchies (detector_bodies.hpp), the collisions and their
-// order (collision_collector.hpp: 96 + 16 bytes per collision at the peak) and the re-test of a repeated step
-// (retest_cache.hpp); this file runs a call through them. The earliest-impact search runs the same search over
-// consecutive time windows of the step (window_schedule.hpp), the pipeline testing each pair only up to the earliest
-// contact found so far.
+// exact-safe continuous collision test of every surviving pair. The candidates are not stored: the pair stream
+// (pair_stream.hpp) hands each search thread's candidates, block by block as they are found, to the stage of the
+// question asked (ccd_stages.hpp), and only its records are kept, within the collision budget. In parts: the bodies
+// and their hierarchies (detector_bodies.hpp), the collisions and their order (sorted_records.hpp: 96 + 16 bytes per
+// collision at the peak) and the re-test of a repeated step (retest_cache.hpp); this file runs a call through them.
+// The earliest-impact search runs the same search over consecutive time windows of the step (window_schedule.hpp),
+// its stage testing each pair only up to the earliest contact found so far.
 #include "clothcd/detection/collision_detector.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/detection/pair_culler.hpp"
-#include "collision_collector.hpp"
 #include "detector_bodies.hpp"
 #include "detector_plan.hpp"
-#include "pair_pipeline.hpp"
+#include "ccd_stages.hpp"
+#include "pair_stream.hpp"
 #include "parallel_loop.hpp"
 #include "retest_cache.hpp"
+#include "sorted_records.hpp"
 #include "window_schedule.hpp"
 
 namespace clothcd {
@@ -42,34 +42,28 @@ void check_positions(const PositionsRef& positions, Eigen::Index rows, const std
   if (!positions.allFinite()) throw std::invalid_argument(what + " has a NaN or infinite coordinate");
 }
 
-// Which pairs a search visits and what it does with them.
-struct SearchScope {
-  bool only_moved = false;  // just the pairs with a cloth vertex the re-test cache flags as moved
-  bool test = true;         // run the exact test and keep the collisions (else only count candidates and culled)
-  // With `test`: when set, look for the earliest contact up to the window's end or this bound instead (an earlier
-  // window's earliest toi, else infinity); PairPipeline::earliest has the answer and no collision is kept.
-  std::optional<double> earliest_bound;
-  double window = 1.0;  // with earliest_bound: the end of the part of the step the boxes were refitted to
-};
-
 }  // namespace
 
 struct CollisionDetector::Impl {
   Impl(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
       : plan(settings),
         bodies(cloth_faces, cloth_vertex_count, plan.cloth_hierarchy, plan.obstacle_volume),
-        pipeline(plan.pipeline, plan.settings.block_pairs) {}
+        stream(plan.settings.block_pairs),
+        step_stage(plan.pair_tests),
+        earliest_stage(plan.pair_tests) {}
 
-  detail::DetectorPlan plan;     // the settings, checked and translated once
-  BlockObserver observer;                    // set_block_observer
-  std::function<bool()> cancel;              // set_cancel_check
+  detail::DetectorPlan plan;  // the settings, checked and translated once
+  BlockObserver observer;     // set_block_observer
+  std::function<bool()> cancel;  // set_cancel_check
   detail::DetectorBodies bodies;
-  detail::PairPipeline pipeline;           // culling and exact test of the candidates as they are found
-  std::vector<detail::BodyFrames> frames;  // what the pipeline reads, per body id
+  detail::PairStream stream;  // the candidates in blocks, to the search's stage as they are found
+  detail::StepCollisionStage step_stage;
+  detail::EarliestImpactStage earliest_stage;
+  std::vector<detail::BodyFrames> frames;  // what the stream reads, per body id
   detail::PairKeys keys;
   // The collisions of the last call (kept with their keys for a re-test) and the candidate counts of that call.
-  detail::CollisionCollector collected;
-  detail::PipelineCounts counts;
+  detail::SortedRecords<Collision> collected;
+  detail::StageCounts counts;
   // The cloth positions of this call, copied from the caller's (any layout) into the row-major layout the
   // hierarchies and the pair blocks read: the one copy detect() makes. With DetectorSettings::reuse_unchanged they
   // go to the re-test cache when the call completes (a swap, not a copy).
@@ -82,36 +76,33 @@ struct CollisionDetector::Impl {
   // searched in full.
   [[nodiscard]] bool may_reuse() const { return plan.settings.reuse_unchanged && !plan.culler; }
 
-  // The search with the cloth at `start`/`end`, every candidate culled and, with scope.test, tested as it is found and
-  // its collisions added to `collected` (unsorted). Adds the counts to `found` and the search's time summed over its
-  // tasks to `task_ms`. Throws CollisionBudgetExceeded when the collisions exceed the budget, DetectionCancelled when
-  // the cancel check says so.
-  void search(const Vertices& start, const Vertices& end, SearchScope scope, detail::PipelineCounts& found,
-              double& task_ms) {
+  // What the stream reads for a search with the cloth at `start`/`end`, and the pairs' keys.
+  void prepare(const Vertices& start, const Vertices& end) {
     frames = bodies.frames(start, end);
     keys.assign(frames);
-    detail::PipelineSearch pipeline_search;
-    pipeline_search.exact = scope.test;
-    pipeline_search.observer = scope.test && !scope.earliest_bound && observer ? &observer : nullptr;
-    pipeline_search.cancel = &cancel;
-    if (scope.earliest_bound) {
-      pipeline_search.earliest = true;
-      pipeline_search.window = scope.window;
-      pipeline_search.earliest_bound = *scope.earliest_bound;
-    }
-    pipeline.begin(frames, keys, pipeline_search, scope.test ? static_cast<long>(collected.size()) : 0);
+  }
 
+  // The limits of a search that keeps records: the cancel check and the collision budget.
+  [[nodiscard]] detail::StreamLimits budgeted() const { return {&cancel, plan.settings.max_collisions}; }
+
+  // The candidate search on the frames of prepare(), every block handed to `stage` (begun by the caller) as it is
+  // found; with `only_moved`, just the pairs with a cloth vertex the re-test cache flags as moved. `kept` records of
+  // the call are already found. Adds the candidate counts to `found` and the search's time summed over its tasks to
+  // `task_ms`. Throws CollisionBudgetExceeded when the records exceed the limits' budget, DetectionCancelled when the
+  // cancel check says so.
+  void search(detail::PairStage& stage, const detail::StreamLimits& limits, long kept, bool only_moved,
+              detail::StageCounts& found, double& task_ms) {
+    stream.begin(frames, keys, limits, stage, kept);
     broadphase::TraversalSettings traversal = plan.traversal;
-    traversal.moved_vertices = scope.only_moved ? &retest.moved() : nullptr;
+    traversal.moved_vertices = only_moved ? &retest.moved() : nullptr;
     broadphase::TraversalStats traversal_stats;
     const broadphase::BodyView cloth_view = bodies.cloth_view();
-    if (plan.settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, pipeline, &traversal_stats);
+    if (plan.settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, stream, &traversal_stats);
     for (int body = 1; body <= bodies.obstacle_count(); ++body) {
-      broadphase::find_pair_candidates(cloth_view, bodies.obstacle_view(body), traversal, pipeline, &traversal_stats);
+      broadphase::find_pair_candidates(cloth_view, bodies.obstacle_view(body), traversal, stream, &traversal_stats);
     }
     task_ms += traversal_stats.task_ms;
-    pipeline.add_counts(found);
-    if (scope.test && !scope.earliest_bound) collected.take(pipeline, keys, plan.settings.max_collisions);
+    stream.take_candidate_counts(found.vertex_face, found.edge_edge);
   }
 
   // Starts a call of `caller` (its name for the messages): checks the cloth positions, copies them into
@@ -128,8 +119,10 @@ struct CollisionDetector::Impl {
   // Forgets a call that threw: no collisions, no search state, nothing a re-test could reuse.
   void discard() {
     collected.clear();
-    pipeline.discard();
-    counts = detail::PipelineCounts{};
+    stream.discard();
+    step_stage.discard();
+    earliest_stage.discard();
+    counts = detail::StageCounts{};
     retest.forget();
   }
 };
@@ -183,18 +176,21 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
   // The broad phase, the culling and the exact test run together (each thread's pairs go through them block by
   // block), so their times are the wall time of the search split in proportion to the threads' time in each.
   double wall_ms = 0, task_ms = 0, collect_ms = 0;
-  detail::PipelineCounts replaced, found;
+  detail::StageCounts replaced, found;
   try {
     if (reuse) {
       // The last call's pairs with a moved vertex, found again on the hierarchy and positions of that call: only
       // their count is needed, to keep the candidate and culled counts those of a full search.
       auto t = Clock::now();
-      d.search(d.retest.start(), d.retest.end(), SearchScope{true, false, std::nullopt, 1.0}, replaced, task_ms);
+      d.prepare(d.retest.start(), d.retest.end());
+      d.step_stage.begin(false, nullptr);
+      d.search(d.step_stage, detail::StreamLimits{&d.cancel, -1}, 0, true, replaced, task_ms);
+      d.step_stage.take_counts(replaced);
       wall_ms += milliseconds_since(t);
       d.collected.drop_moved(d.retest.moved());
     } else {
       d.collected.clear();
-      d.counts = detail::PipelineCounts{};
+      d.counts = detail::StageCounts{};
     }
 
     auto t = Clock::now();
@@ -202,7 +198,11 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
     d.stats.refit_ms = milliseconds_since(t);
 
     t = Clock::now();
-    d.search(start, end, SearchScope{reuse, true, std::nullopt, 1.0}, found, task_ms);
+    d.prepare(start, end);
+    d.step_stage.begin(true, d.observer ? &d.observer : nullptr);
+    d.search(d.step_stage, d.budgeted(), static_cast<long>(d.collected.size()), reuse, found, task_ms);
+    d.step_stage.take_counts(found);
+    d.collected.take(d.step_stage, d.keys.vertex_face_key_count(), d.plan.settings.max_collisions);
     wall_ms += milliseconds_since(t);
 
     t = Clock::now();
@@ -237,7 +237,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
 
   if (d.may_reuse()) d.retest.remember(d.current_start, d.current_end);
   d.bodies.finish_step();
-  return d.collected.collisions();
+  return d.collected.records();
 }
 
 EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_start, const PositionsRef& caller_end) {
@@ -251,9 +251,9 @@ EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_sta
   // they are clear) to its end or the earliest toi found so far.
   EarliestImpact answer;
   detail::KeyedCollision earliest;
-  earliest.collision.toi = std::numeric_limits<double>::infinity();
+  earliest.record.toi = std::numeric_limits<double>::infinity();
   double task_ms = 0, wall_ms = 0;
-  detail::PipelineCounts found;
+  detail::StageCounts found;
   const broadphase::BodyTopology& cloth = d.bodies.cloth().topology;
   // What a window costs whatever its length, counted as candidates: a box per vertex, a refit of every face and edge.
   const double fixed_cost = cloth.vertex_count + cloth.face_count() + cloth.edge_count();
@@ -267,14 +267,14 @@ EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_sta
                                               d.plan.settings.thickness);
       d.stats.refit_ms += milliseconds_since(t);
       t = Clock::now();
-      SearchScope scope;
-      scope.earliest_bound = earliest.collision.toi;
-      scope.window = window.to();
-      d.search(d.current_start, d.current_end, scope, found, task_ms);
+      d.prepare(d.current_start, d.current_end);
+      d.earliest_stage.begin(window.to(), earliest.record.toi, d.keys.vertex_face_key_count());
+      d.search(d.earliest_stage, d.budgeted(), 0, false, found, task_ms);
+      d.earliest_stage.take_counts(found);
       wall_ms += milliseconds_since(t);
-      const detail::KeyedCollision in_window = d.pipeline.earliest();
+      const detail::KeyedCollision in_window = d.earliest_stage.earliest();
       if (detail::earlier_impact(in_window, earliest)) earliest = in_window;
-      if (earliest.collision.toi <= window.to() || window.last()) break;
+      if (earliest.record.toi <= window.to() || window.last()) break;
       window.advance(static_cast<double>(found.vertex_face + found.edge_edge - candidates_before));
     }
   } catch (...) {
@@ -291,11 +291,11 @@ EarliestImpact CollisionDetector::earliest_impact(const PositionsRef& caller_sta
   d.stats.candidates_vertex_face = found.vertex_face;
   d.stats.candidates_edge_edge = found.edge_edge;
   d.stats.culled = found.culled;
-  answer.hit = std::isfinite(earliest.collision.toi);
+  answer.hit = std::isfinite(earliest.record.toi);
   d.stats.collisions = answer.hit ? 1 : 0;
   if (answer.hit) {
-    answer.toi = earliest.collision.toi;
-    answer.pair = earliest.collision;
+    answer.toi = earliest.record.toi;
+    answer.pair = earliest.record;
   }
   return answer;
 }

@@ -10,7 +10,7 @@
 #include "broadphase/swept_boxes.hpp"
 #include "broadphase/traversal.hpp"
 #include "clothcd/detection/collision_detector.hpp"
-#include "pair_pipeline.hpp"
+#include "pair_stream.hpp"
 
 namespace clothcd::detail {
 

@@ -59,11 +59,10 @@ HierarchyVolumes hierarchy_volumes(HierarchyKind hierarchy) {
 
 DetectorPlan::DetectorPlan(const DetectorSettings& detector_settings) : settings(checked(detector_settings)) {
   if (settings.culling == CullingMode::Network) culler = settings.culler;
-  pipeline.filter = ccd_filter(settings.culling);
-  pipeline.ccd = ccd::CcdSettings{settings.thickness, settings.decide_exactly};
-  pipeline.projection = ccd::ProjectionFilterOptions{settings.projection_normals};
-  pipeline.culler = culler.get();
-  pipeline.max_collisions = settings.max_collisions;
+  pair_tests.filter = ccd_filter(settings.culling);
+  pair_tests.ccd = ccd::CcdSettings{settings.thickness, settings.decide_exactly};
+  pair_tests.projection = ccd::ProjectionFilterOptions{settings.projection_normals};
+  pair_tests.culler = culler.get();
 
   const HierarchyVolumes volumes = hierarchy_volumes(settings.hierarchy);
   cloth_hierarchy.volume = volumes.cloth;

@@ -1,6 +1,6 @@
 #pragma once
 // What a detector's settings mean for its work (internal), worked out once when the detector is made: the checked
-// settings, the culling stage (filters, culler) and the pair pipeline's settings, the hierarchies' build settings
+// settings, the culling and exact test of every pair (filters, culler, CCD settings), the hierarchies' build settings
 // from the hierarchy kind, and the candidate search's settings. Every search reads it; none translates the settings
 // again.
 #include <memory>
@@ -9,7 +9,7 @@
 #include "broadphase/traversal.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/detection/pair_culler.hpp"
-#include "pair_pipeline.hpp"
+#include "block_culling.hpp"
 
 namespace clothcd::detail {
 
@@ -20,7 +20,7 @@ struct DetectorPlan {
 
   DetectorSettings settings;                 ///< As given.
   std::shared_ptr<const PairCuller> culler;  ///< CullingMode::Network's culler (null in every other mode).
-  PipelineSettings pipeline;                 ///< The culling stage and the exact test of every pair.
+  PairTestSettings pair_tests;               ///< The culling and the exact test of every pair.
   broadphase::BvhSettings cloth_hierarchy;   ///< The cloth's hierarchy.
   broadphase::VolumeKind obstacle_volume;    ///< The obstacles' node volume (their other settings are the cloth's).
   /// The candidate search (TraversalSettings::moved_vertices is set per search).
