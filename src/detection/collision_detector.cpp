@@ -16,16 +16,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "broadphase/traversal.hpp"
 #include "clothcd/ccd/ccd.hpp"
-#include "clothcd/detection/pair_culler.hpp"
-#include "detector_bodies.hpp"
-#include "detector_plan.hpp"
-#include "ccd_stages.hpp"
-#include "pair_stream.hpp"
+#include "detector_impl.hpp"
 #include "parallel_loop.hpp"
-#include "retest_cache.hpp"
-#include "sorted_records.hpp"
 #include "window_schedule.hpp"
 
 namespace clothcd {
@@ -34,98 +27,7 @@ namespace {
 using Clock = detail::StageClock;
 using detail::milliseconds_since;
 
-void check_positions(const PositionsRef& positions, Eigen::Index rows, const std::string& what) {
-  if (positions.rows() != rows) {
-    throw std::invalid_argument(what + " has " + std::to_string(positions.rows()) + " rows, expected " +
-                                std::to_string(rows));
-  }
-  if (!positions.allFinite()) throw std::invalid_argument(what + " has a NaN or infinite coordinate");
-}
-
 }  // namespace
-
-struct CollisionDetector::Impl {
-  Impl(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
-      : plan(settings),
-        bodies(cloth_faces, cloth_vertex_count, plan.cloth_hierarchy, plan.obstacle_volume),
-        stream(plan.settings.block_pairs),
-        step_stage(plan.pair_tests),
-        earliest_stage(plan.pair_tests) {}
-
-  detail::DetectorPlan plan;  // the settings, checked and translated once
-  BlockObserver observer;     // set_block_observer
-  std::function<bool()> cancel;  // set_cancel_check
-  detail::DetectorBodies bodies;
-  detail::PairStream stream;  // the candidates in blocks, to the search's stage as they are found
-  detail::StepCollisionStage step_stage;
-  detail::EarliestImpactStage earliest_stage;
-  std::vector<detail::BodyFrames> frames;  // what the stream reads, per body id
-  detail::PairKeys keys;
-  // The collisions of the last call (kept with their keys for a re-test) and the candidate counts of that call.
-  detail::SortedRecords<Collision> collected;
-  detail::StageCounts counts;
-  // The cloth positions of this call, copied from the caller's (any layout) into the row-major layout the
-  // hierarchies and the pair blocks read: the one copy detect() makes. With DetectorSettings::reuse_unchanged they
-  // go to the re-test cache when the call completes (a swap, not a copy).
-  Vertices current_start, current_end;
-  detail::RetestCache retest;
-  DetectionStats stats;
-
-  // Whether a re-test may keep the last call's answer: enabled, no culler (its answer is not a function of the pair
-  // alone), and no obstacle changed since. A moving obstacle is stale again after every call, so its steps are always
-  // searched in full.
-  [[nodiscard]] bool may_reuse() const { return plan.settings.reuse_unchanged && !plan.culler; }
-
-  // What the stream reads for a search with the cloth at `start`/`end`, and the pairs' keys.
-  void prepare(const Vertices& start, const Vertices& end) {
-    frames = bodies.frames(start, end);
-    keys.assign(frames);
-  }
-
-  // The limits of a search that keeps records: the cancel check and the collision budget.
-  [[nodiscard]] detail::StreamLimits budgeted() const { return {&cancel, plan.settings.max_collisions}; }
-
-  // The candidate search on the frames of prepare(), every block handed to `stage` (begun by the caller) as it is
-  // found; with `only_moved`, just the pairs with a cloth vertex the re-test cache flags as moved. `kept` records of
-  // the call are already found. Adds the candidate counts to `found` and the search's time summed over its tasks to
-  // `task_ms`. Throws CollisionBudgetExceeded when the records exceed the limits' budget, DetectionCancelled when the
-  // cancel check says so.
-  void search(detail::PairStage& stage, const detail::StreamLimits& limits, long kept, bool only_moved,
-              detail::StageCounts& found, double& task_ms) {
-    stream.begin(frames, keys, limits, stage, kept);
-    broadphase::TraversalSettings traversal = plan.traversal;
-    traversal.moved_vertices = only_moved ? &retest.moved() : nullptr;
-    broadphase::TraversalStats traversal_stats;
-    const broadphase::BodyView cloth_view = bodies.cloth_view();
-    if (plan.settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, stream, &traversal_stats);
-    for (int body = 1; body <= bodies.obstacle_count(); ++body) {
-      broadphase::find_pair_candidates(cloth_view, bodies.obstacle_view(body), traversal, stream, &traversal_stats);
-    }
-    task_ms += traversal_stats.task_ms;
-    stream.take_candidate_counts(found.vertex_face, found.edge_edge);
-  }
-
-  // Starts a call of `caller` (its name for the messages): checks the cloth positions, copies them into
-  // current_start / current_end and clears the stats.
-  void begin_call(const PositionsRef& caller_start, const PositionsRef& caller_end, const std::string& caller) {
-    const int vertex_count = bodies.cloth().topology.vertex_count;
-    check_positions(caller_start, vertex_count, caller + ": cloth start positions");
-    check_positions(caller_end, vertex_count, caller + ": cloth end positions");
-    current_start = caller_start;
-    current_end = caller_end;
-    stats = DetectionStats{};
-  }
-
-  // Forgets a call that threw: no collisions, no search state, nothing a re-test could reuse.
-  void discard() {
-    collected.clear();
-    stream.discard();
-    step_stage.discard();
-    earliest_stage.discard();
-    counts = detail::StageCounts{};
-    retest.forget();
-  }
-};
 
 CollisionDetector::CollisionDetector(const Faces& cloth_faces, int cloth_vertex_count, const DetectorSettings& settings)
     : impl_(std::make_unique<Impl>(cloth_faces, cloth_vertex_count, settings)) {}
@@ -138,8 +40,8 @@ int CollisionDetector::add_obstacle(const TriangleMesh& mesh) { return impl_->bo
 
 void CollisionDetector::set_obstacle_positions(int body, const PositionsRef& start, const PositionsRef& end) {
   detail::Body& o = impl_->bodies.obstacle(body, "set_obstacle_positions");
-  check_positions(start, o.rest.rows(), "set_obstacle_positions: start");
-  check_positions(end, o.rest.rows(), "set_obstacle_positions: end");
+  detail::check_positions(start, o.rest.rows(), "set_obstacle_positions: start");
+  detail::check_positions(end, o.rest.rows(), "set_obstacle_positions: end");
   o.start = start;
   o.end = end;
   o.stale = true;

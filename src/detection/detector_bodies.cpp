@@ -11,6 +11,7 @@ DetectorBodies::DetectorBodies(const Faces& cloth_faces, int cloth_vertex_count,
     : bvh_settings_(cloth_hierarchy), obstacle_volume_(obstacle_volume) {
   cloth_.topology = broadphase::build_body_topology(cloth_faces, cloth_vertex_count);
   cloth_.bvh = broadphase::Bvh(bvh_settings_);
+  cloth_.state_bvh = broadphase::Bvh(bvh_settings_);
 }
 
 int DetectorBodies::add_obstacle(const TriangleMesh& mesh) {
@@ -23,6 +24,7 @@ int DetectorBodies::add_obstacle(const TriangleMesh& mesh) {
   broadphase::BvhSettings settings = bvh_settings_;
   settings.volume = obstacle_volume_;
   body.bvh = broadphase::Bvh(settings);
+  body.state_bvh = broadphase::Bvh(settings);
   obstacles_.push_back(std::move(body));
   return static_cast<int>(obstacles_.size());
 }
@@ -85,6 +87,35 @@ int DetectorBodies::refit_part(const Vertices& start, const Vertices& end, doubl
     o.stale = o.moving;
   }
   return rebuilds;
+}
+
+int DetectorBodies::refit_state(const Vertices& positions, double distance) {
+  int rebuilds = 0;
+  const auto refit_body = [&](Body& body, const Vertices& x) {
+    broadphase::compute_swept_vertex_boxes(x, x, distance, body.state_boxes);
+    if (body.state_bvh.update(body.topology, body.state_boxes, x, x) == broadphase::BvhUpdate::Rebuilt) ++rebuilds;
+  };
+  refit_body(cloth_, positions);
+  for (Body& o : obstacles_) refit_body(o, o.start);
+  return rebuilds;
+}
+
+broadphase::BodyView DetectorBodies::cloth_state_view() const {
+  return {0, &cloth_.topology, &cloth_.state_boxes, &cloth_.state_bvh};
+}
+
+broadphase::BodyView DetectorBodies::obstacle_state_view(int body) const {
+  const Body& o = obstacle(body, "obstacle_state_view");
+  return {body, &o.topology, &o.state_boxes, &o.state_bvh};
+}
+
+std::vector<BodyFrames> DetectorBodies::state_frames(const Vertices& positions) const {
+  std::vector<BodyFrames> frames(obstacles_.size() + 1);
+  frames[0] = {&cloth_.topology, &positions, &positions};
+  for (std::size_t k = 0; k < obstacles_.size(); ++k) {
+    frames[k + 1] = {&obstacles_[k].topology, &obstacles_[k].start, &obstacles_[k].start};
+  }
+  return frames;
 }
 
 std::vector<BodyFrames> DetectorBodies::frames(const Vertices& start, const Vertices& end) const {

@@ -24,6 +24,10 @@ struct Body {
   broadphase::Bvh bvh;                ///< Hierarchy over `boxes`.
   bool stale = true;                  ///< Boxes and hierarchy must be recomputed before the next search.
   bool moving = false;                ///< Positions were set for the coming step only.
+  /// The queries of one state: the vertex boxes of the positions at one instant and their own hierarchy, so that a
+  /// state query never disturbs the step's boxes and hierarchy (which a re-test of the step reuses).
+  broadphase::SweptBoxes state_boxes;
+  broadphase::Bvh state_bvh;          ///< Hierarchy over `state_boxes`.
 };
 
 /// The cloth and the obstacles of a detector.
@@ -58,7 +62,19 @@ class DetectorBodies {
   /// many hierarchies were rebuilt instead of refitted.
   int refit_part(const Vertices& start, const Vertices& end, double from, double to, double thickness);
 
-  /// What the pair pipeline reads, per body id, with the cloth at `start`/`end` (valid while those and the bodies are).
+  /// Refits the state hierarchies to one state: the cloth at `positions`, each obstacle at its positions at the start
+  /// of the coming step, every vertex box inflated by half of `distance` (>= 0) on every side, so that primitives
+  /// closer than `distance` have overlapping boxes. Returns how many hierarchies were rebuilt instead of refitted.
+  int refit_state(const Vertices& positions, double distance);
+  /// The cloth's view for a search of the state of refit_state().
+  [[nodiscard]] broadphase::BodyView cloth_state_view() const;
+  /// Obstacle `body`'s view for a search of the state of refit_state().
+  [[nodiscard]] broadphase::BodyView obstacle_state_view(int body) const;
+  /// What the stream reads for a state query, per body id: the cloth at `positions`, the obstacles at the start of
+  /// the coming step, as both ends of a step of zero length.
+  [[nodiscard]] std::vector<BodyFrames> state_frames(const Vertices& positions) const;
+
+  /// What the pair stream reads, per body id, with the cloth at `start`/`end` (valid while those and the bodies are).
   [[nodiscard]] std::vector<BodyFrames> frames(const Vertices& start, const Vertices& end) const;
   /// The cloth's view for the candidate search.
   [[nodiscard]] broadphase::BodyView cloth_view() const;

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/detection_errors.hpp"
 #include "clothcd/detection/earliest_impact.hpp"
+#include "clothcd/detection/proximity.hpp"
 #include "clothcd/mesh/positions_ref.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
 
@@ -154,7 +156,33 @@ class CollisionDetector {
   /// examined); the next detect() searches its step in full.
   EarliestImpact earliest_impact(const PositionsRef& start, const PositionsRef& end);
 
-  /// Counts and times of the last detect() or earliest_impact() call.
+  /// Every pair detect() covers whose distance at one state is below `distance` (scene units): the cloth at
+  /// `positions` (#V x 3, finite, in any layout, as detect() takes them), each obstacle at its positions at the start
+  /// of the coming step (where it rests unless moved for that step). The pairs are those of detect(): the cloth's own
+  /// vertex-face and edge-edge pairs that share no vertex (with DetectorSettings::self_collision) and the cloth
+  /// against every obstacle, a vertex against a closed triangle and two closed segments. Membership is exact: a pair
+  /// is reported if and only if its distance on the double coordinates, as a real number, is below `distance`
+  /// (rounding neither adds nor drops a pair; one at exactly `distance` is not reported). Each record (Proximity)
+  /// has the distance within kDistanceRelativeError, the closest points and where they lie; they come in detect()'s
+  /// order (vertex-face pairs first, each kind sorted by its primitives). The thickness and the culling mode of the
+  /// settings play no part. The returned reference stays valid until the next proximity() call.
+  /// Throws std::invalid_argument on wrong sizes, a NaN or infinite coordinate, or a distance that is <= 0, NaN or
+  /// infinite; CollisionBudgetExceeded beyond DetectorSettings::max_collisions pairs; DetectionCancelled when
+  /// cancelled (set_cancel_check). Afterwards the detector stays usable. A state query leaves the step's hierarchies
+  /// and its re-test (DetectorSettings::reuse_unchanged) as they were: a state has hierarchies of its own.
+  const std::vector<Proximity>& proximity(const PositionsRef& positions, double distance);
+
+  /// The smallest distance at one state over the pairs proximity() covers (at the same positions), and a pair that
+  /// has it: a branch and bound over the hierarchies, which stop descending where the boxes are farther apart than
+  /// the closest pair found so far, so no distance has to be guessed. With `upper_bound` (> 0) only pairs closer than
+  /// it count, which ends the search sooner; `found` is false when there is none (the default, infinity, finds the
+  /// minimum whenever there is a pair). The distance comes with proximity()'s error statement. Throws as proximity()
+  /// does (an upper bound that is <= 0 or NaN is invalid).
+  MinimumDistance minimum_distance(const PositionsRef& positions,
+                                   double upper_bound = std::numeric_limits<double>::infinity());
+
+  /// Counts and times of the last call (detect(), earliest_impact() or a state query; for a state query
+  /// candidates are the pairs tested, collisions the records found and exact_ms the distance tests).
   [[nodiscard]] const DetectionStats& stats() const;
 
   /// Makes later detect() calls cancellable: the call's threads call `cancel` before each block of
