@@ -9,6 +9,7 @@ namespace clothcd::detail {
 void StageCounts::add(const StageCounts& o) {
   vertex_face += o.vertex_face;
   edge_edge += o.edge_edge;
+  face_face += o.face_face;
   culled += o.culled;
   culler.add(o.culler);
   culling_ms += o.culling_ms;

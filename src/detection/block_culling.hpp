@@ -23,6 +23,7 @@ struct PairTestSettings {
 struct StageCounts {
   long vertex_face = 0;   ///< Vertex-face candidates.
   long edge_edge = 0;     ///< Edge-edge candidates.
+  long face_face = 0;     ///< Face-face candidates (a face search).
   long culled = 0;        ///< Candidates the culling removed.
   CullerCounts culler;    ///< Network mode: the culler's verdicts and the filters behind it.
   double culling_ms = 0;  ///< Culling, the culler's part included.

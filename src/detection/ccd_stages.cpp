@@ -34,9 +34,10 @@ bool earlier_impact(const KeyedCollision& a, const KeyedCollision& b) {
 
 StepCollisionStage::StepCollisionStage(const PairTestSettings& settings) : settings_(settings) {}
 
-void StepCollisionStage::begin(bool test, const BlockObserver* observer) {
+void StepCollisionStage::begin(bool test, const BlockObserver* observer, std::uint64_t edge_edge_offset) {
   test_ = test;
   observer_ = observer;
+  edge_edge_offset_ = edge_edge_offset;
   discard();
 }
 
@@ -60,6 +61,7 @@ long StepCollisionStage::run(ccd::PairBlock& block, const std::uint64_t* keys) {
   long hits = 0;
   if (test_) {
     const auto t = StageClock::now();
+    const std::uint64_t kind_offset = block.kind() == PairKind::EdgeEdge ? edge_edge_offset_ : 0;
     for (int i = 0; i < left.survivors; ++i) {
       const ccd::CcdResult r =
           ccd::continuous_collision_after_filter(block.query(i), settings_.ccd, filters_passed(left, i));
@@ -67,7 +69,7 @@ long StepCollisionStage::run(ccd::PairBlock& block, const std::uint64_t* keys) {
       if (observer_ != nullptr) w.observed_colliding[block.tag(i)] = 1;
       KeyedCollision& h = w.collisions.add();
       ++hits;
-      h.key = keys[block.tag(i)];
+      h.key = kind_offset + keys[block.tag(i)];
       fill_collision(block, i, r, h.record);
     }
     w.counts.exact_ms += milliseconds_since(t);

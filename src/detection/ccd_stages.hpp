@@ -33,8 +33,9 @@ class StepCollisionStage final : public PairStage {
   explicit StepCollisionStage(const PairTestSettings& settings);
 
   /// Starts a search. `test` false only culls (the counts of a search, no exact test and no collisions); with
-  /// `observer`, every block is shown to it after its exact test.
-  void begin(bool test, const BlockObserver* observer);
+  /// `observer`, every block is shown to it after its exact test; `edge_edge_offset` is the search's
+  /// PairKeys::vertex_face_key_count(), added to the edge-edge keys.
+  void begin(bool test, const BlockObserver* observer, std::uint64_t edge_edge_offset);
   /// Culls and tests one block (see PairStage::run); returns the collisions found.
   long run(ccd::PairBlock& block, const std::uint64_t* keys) override;
 
@@ -64,6 +65,7 @@ class StepCollisionStage final : public PairStage {
   const PairTestSettings& settings_;
   bool test_ = true;
   const BlockObserver* observer_ = nullptr;
+  std::uint64_t edge_edge_offset_ = 0;
   tbb::enumerable_thread_specific<Worker> workers_;
 };
 

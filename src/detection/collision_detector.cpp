@@ -85,7 +85,7 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
       // their count is needed, to keep the candidate and culled counts those of a full search.
       auto t = Clock::now();
       d.prepare(d.retest.start(), d.retest.end());
-      d.step_stage.begin(false, nullptr);
+      d.step_stage.begin(false, nullptr, d.keys.vertex_face_key_count());
       d.search(d.step_stage, detail::StreamLimits{&d.cancel, -1}, 0, true, replaced, task_ms);
       d.step_stage.take_counts(replaced);
       wall_ms += milliseconds_since(t);
@@ -101,10 +101,10 @@ const std::vector<Collision>& CollisionDetector::detect(const PositionsRef& call
 
     t = Clock::now();
     d.prepare(start, end);
-    d.step_stage.begin(true, d.observer ? &d.observer : nullptr);
+    d.step_stage.begin(true, d.observer ? &d.observer : nullptr, d.keys.vertex_face_key_count());
     d.search(d.step_stage, d.budgeted(), static_cast<long>(d.collected.size()), reuse, found, task_ms);
     d.step_stage.take_counts(found);
-    d.collected.take(d.step_stage, d.keys.vertex_face_key_count(), d.plan.settings.max_collisions);
+    d.collected.take(d.step_stage, d.plan.settings.max_collisions);
     wall_ms += milliseconds_since(t);
 
     t = Clock::now();

@@ -12,6 +12,7 @@
 #include "clothcd/detection/proximity.hpp"
 #include "detector_bodies.hpp"
 #include "detector_plan.hpp"
+#include "intersection_stage.hpp"
 #include "pair_stream.hpp"
 #include "proximity_stage.hpp"
 #include "retest_cache.hpp"
@@ -50,6 +51,7 @@ struct CollisionDetector::Impl {
   detail::EarliestImpactStage earliest_stage;
   detail::ProximityStage proximity_stage;
   detail::MinimumDistanceStage minimum_stage;
+  detail::IntersectionStage intersection_stage;
   std::vector<detail::BodyFrames> frames;  // what the stream reads, per body id
   detail::PairKeys keys;
   // The collisions of the last call (kept with their keys for a re-test) and the candidate counts of that call.
@@ -65,6 +67,7 @@ struct CollisionDetector::Impl {
   // the last proximity() call.
   Vertices state_positions;
   detail::SortedRecords<Proximity> proximities;
+  detail::SortedRecords<FaceIntersection> intersecting;  // the faces of the last intersections() call
 
   // Whether a re-test may keep the last call's answer: enabled, no culler (its answer is not a function of the pair
   // alone), and no obstacle changed since. A moving obstacle is stale again after every call, so its steps are always
@@ -97,14 +100,15 @@ struct CollisionDetector::Impl {
       broadphase::find_pair_candidates(cloth_view, bodies.obstacle_view(body), traversal, stream, &traversal_stats);
     }
     task_ms += traversal_stats.task_ms;
-    stream.take_candidate_counts(found.vertex_face, found.edge_edge);
+    stream.take_candidate_counts(found.vertex_face, found.edge_edge, found.face_face);
   }
 
   // The candidate search of a state query: the state hierarchies of DetectorBodies::refit_state, the stream's frames
-  // those of DetectorBodies::state_frames, `traversal` the search's settings. Otherwise as search().
+  // those of DetectorBodies::state_frames, `traversal` the search's settings, `limits` the stream's. Otherwise as
+  // search().
   void search_state(detail::PairStage& stage, const broadphase::TraversalSettings& traversal,
-                    detail::StageCounts& found, double& task_ms) {
-    stream.begin(frames, keys, budgeted(), stage, 0);
+                    const detail::StreamLimits& limits, detail::StageCounts& found, double& task_ms) {
+    stream.begin(frames, keys, limits, stage, 0);
     broadphase::TraversalStats traversal_stats;
     const broadphase::BodyView cloth_view = bodies.cloth_state_view();
     if (plan.settings.self_collision) broadphase::find_self_candidates(cloth_view, traversal, stream, &traversal_stats);
@@ -113,7 +117,7 @@ struct CollisionDetector::Impl {
                                        &traversal_stats);
     }
     task_ms += traversal_stats.task_ms;
-    stream.take_candidate_counts(found.vertex_face, found.edge_edge);
+    stream.take_candidate_counts(found.vertex_face, found.edge_edge, found.face_face);
   }
 
   // Starts a call of `caller` (its name for the messages): checks the cloth positions, copies them into
@@ -136,6 +140,12 @@ struct CollisionDetector::Impl {
     counts = detail::StageCounts{};
     retest.forget();
   }
+
+  // Refits the state hierarchies to state_positions (no inflation: touching faces have touching boxes) and runs the
+  // face search into the intersection stage with `limits` (a search ended by StreamLimits::stop_at returns
+  // normally). Sets the refit time; adds the search's counts, its wall time and its tasks' time.
+  void search_intersections(const detail::StreamLimits& limits, detail::StageCounts& found, double& wall_ms,
+                            double& task_ms);
 
   // Starts a state query of `caller` (its name for the messages): checks the cloth positions, copies them into
   // state_positions and clears the stats. The step's state (its positions, records and re-test cache) is untouched.

@@ -1,7 +1,9 @@
 // The detector's pair stream (see pair_stream.hpp).
 #include "pair_stream.hpp"
 
+#include <algorithm>
 #include <array>
+#include <stdexcept>
 
 #include "clothcd/detection/detection_errors.hpp"
 
@@ -18,6 +20,14 @@ void PairKeys::assign(const std::vector<BodyFrames>& bodies) {
     face_base_[b + 1] = face_base_[b] + static_cast<std::uint64_t>(t.face_count());
     edge_base_[b + 1] = edge_base_[b] + static_cast<std::uint64_t>(t.edge_count());
   }
+}
+
+long PairStage::run(ccd::PairBlock&, const std::uint64_t*) {
+  throw std::logic_error("pair stream: this stage takes face pairs, not pair blocks");
+}
+
+long PairStage::run_faces(const broadphase::FaceFaceCandidate*, std::size_t) {
+  throw std::logic_error("pair stream: this stage takes pair blocks, not face pairs");
 }
 
 PairStream::PairStream(int block_pairs) : workers_([block_pairs] { return Worker(block_pairs); }) {
@@ -37,15 +47,16 @@ void PairStream::begin(const std::vector<BodyFrames>& bodies, const PairKeys& ke
 void PairStream::discard() {
   for (Worker& w : workers_) {
     w.block.reset(PairKind::VertexFace);
-    w.vertex_face = w.edge_edge = 0;
+    w.vertex_face = w.edge_edge = w.face_face = 0;
   }
 }
 
-void PairStream::take_candidate_counts(long& vertex_face, long& edge_edge) {
+void PairStream::take_candidate_counts(long& vertex_face, long& edge_edge, long& face_face) {
   for (Worker& w : workers_) {
     vertex_face += w.vertex_face;
     edge_edge += w.edge_edge;
-    w.vertex_face = w.edge_edge = 0;
+    face_face += w.face_face;
+    w.vertex_face = w.edge_edge = w.face_face = 0;
   }
 }
 
@@ -53,6 +64,7 @@ void PairStream::check_stop() const {
   const std::function<bool()>* cancel = limits_.cancel;
   if (cancel != nullptr && *cancel && (*cancel)()) throw DetectionCancelled();
   const long found = found_.load(std::memory_order_relaxed);
+  if (limits_.stop_at >= 0 && found >= limits_.stop_at) throw SearchEnded();
   if (limits_.max_records >= 0 && found > limits_.max_records) {
     throw CollisionBudgetExceeded(found, limits_.max_records);
   }
@@ -101,6 +113,14 @@ void PairStream::consume(const broadphase::CandidateSet& chunk) {
         keys_->edge_edge(c.body_a, c.edge_a, c.body_b, c.edge_b));
   }
   run_block(w);
+  // Face pairs go to the stage as they are, a block's worth at a time.
+  const std::size_t slice = static_cast<std::size_t>(w.block.capacity());
+  for (std::size_t from = 0; from < chunk.face_face.size(); from += slice) {
+    check_stop();
+    const long records = stage_->run_faces(chunk.face_face.data() + from, std::min(slice, chunk.face_face.size() - from));
+    if (records > 0) found_.fetch_add(records, std::memory_order_relaxed);
+  }
+  w.face_face += static_cast<long>(chunk.face_face.size());
   w.vertex_face += static_cast<long>(chunk.vertex_face.size());
   w.edge_edge += static_cast<long>(chunk.edge_edge.size());
 }

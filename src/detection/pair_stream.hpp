@@ -39,6 +39,11 @@ class PairKeys {
   }
   /// One more than the largest vertex-face key: added to the edge-edge keys, it orders every vertex-face pair first.
   [[nodiscard]] std::uint64_t vertex_face_key_count() const { return vertex_base_.back() * face_base_.back(); }
+  /// Key of face `face_a` of `body_a` against face `face_b` of `body_b` (the pairs of a face search).
+  [[nodiscard]] std::uint64_t face_face(int body_a, int face_a, int body_b, int face_b) const {
+    return (face_base_[body_a] + static_cast<std::uint64_t>(face_a)) * face_base_.back() + face_base_[body_b] +
+           static_cast<std::uint64_t>(face_b);
+  }
   /// Key of edge `edge_a` of `body_a` against edge `edge_b` of `body_b`.
   [[nodiscard]] std::uint64_t edge_edge(int body_a, int edge_a, int body_b, int edge_b) const {
     return (edge_base_[body_a] + static_cast<std::uint64_t>(edge_a)) * edge_base_.back() + edge_base_[body_b] +
@@ -49,15 +54,22 @@ class PairKeys {
   std::vector<std::uint64_t> vertex_base_, face_base_, edge_base_;  // per body, and the total at the end
 };
 
-/// One question's work on the pairs of a search, a block at a time.
+/// One question's work on the pairs of a search, a block at a time: vertex-face and edge-edge pairs in pair blocks,
+/// or the face pairs of a face search (broadphase::SearchedPairs::FaceFace). A stage takes one of the two; the other
+/// throws std::logic_error.
 class PairStage {
  public:
   virtual ~PairStage() = default;
   /// Works on the pairs of `block` (it may reorder them); pair i's sort key is keys[block.tag(i)]. Called from the
   /// search's threads, several at once, each with its own block. Returns how many records it added, which count in
   /// the stream's budget.
-  virtual long run(ccd::PairBlock& block, const std::uint64_t* keys) = 0;
+  virtual long run(ccd::PairBlock& block, const std::uint64_t* keys);
+  /// Works on `count` face pairs from `pairs`, as run() does on a block.
+  virtual long run_faces(const broadphase::FaceFaceCandidate* pairs, std::size_t count);
 };
+
+/// Thrown by the stream to end a search that has found what StreamLimits::stop_at asked for (the caller catches it).
+struct SearchEnded {};
 
 /// What bounds one search of the stream.
 struct StreamLimits {
@@ -66,6 +78,9 @@ struct StreamLimits {
   /// Once the records of the search (the `kept` ones of begin() included) pass this, the next block throws
   /// CollisionBudgetExceeded; negative: no budget.
   long max_records = -1;
+  /// Once the search has this many records, the next block throws SearchEnded (a question answered by its first
+  /// records); negative: never.
+  long stop_at = -1;
 };
 
 /// The pair stream (see the file comment).
@@ -83,8 +98,8 @@ class PairStream final : public broadphase::CandidateSink {
   /// CollisionBudgetExceeded or DetectionCancelled to stop the search (see StreamLimits).
   void consume(const broadphase::CandidateSet& chunk) override;
 
-  /// The candidates of the search since the last call, by kind; resets them.
-  void take_candidate_counts(long& vertex_face, long& edge_edge);
+  /// Adds the candidates of the search since the last call, by kind, and resets them.
+  void take_candidate_counts(long& vertex_face, long& edge_edge, long& face_face);
 
   /// Forgets a search (e.g. after it threw): empty blocks, no counts.
   void discard();
@@ -95,7 +110,7 @@ class PairStream final : public broadphase::CandidateSink {
     explicit Worker(int block_pairs) : block(block_pairs), keys(static_cast<std::size_t>(block.capacity())) {}
     ccd::PairBlock block;
     std::vector<std::uint64_t> keys;  // sort key of each pair pushed, by tag
-    long vertex_face = 0, edge_edge = 0;
+    long vertex_face = 0, edge_edge = 0, face_face = 0;
   };
 
   // Throws when the search must stop: the cancel check returns true, or the records found exceed the budget.

@@ -40,8 +40,9 @@ bool closer(const KeyedProximity& a, const KeyedProximity& b) {
 
 }  // namespace
 
-void ProximityStage::begin(double distance) {
+void ProximityStage::begin(double distance, std::uint64_t edge_edge_offset) {
   distance_ = distance;
+  edge_edge_offset_ = edge_edge_offset;
   discard();
 }
 
@@ -56,6 +57,7 @@ long ProximityStage::run(ccd::PairBlock& block, const std::uint64_t* keys) {
   Worker& w = workers_.local();
   const auto t = StageClock::now();
   const bool vertex_face = block.kind() == PairKind::VertexFace;
+  const std::uint64_t kind_offset = vertex_face ? 0 : edge_edge_offset_;
   long found = 0;
   geometry::PairDistance d;
   for (int i = 0; i < block.size(); ++i) {
@@ -64,7 +66,7 @@ long ProximityStage::run(ccd::PairBlock& block, const std::uint64_t* keys) {
                                     : geometry::segment_segment_within(x[0], x[1], x[2], x[3], distance_, d);
     if (!within) continue;
     KeyedProximity& r = w.records.add();
-    r.key = keys[block.tag(i)];
+    r.key = kind_offset + keys[block.tag(i)];
     fill_proximity(block, i, d, r.record);
     ++found;
   }

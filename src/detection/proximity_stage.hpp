@@ -21,8 +21,9 @@ using KeyedProximity = Keyed<Proximity>;
 /// Every pair of the stream within a distance (exact membership: geometry/pair_distance.hpp), kept per thread.
 class ProximityStage final : public PairStage {
  public:
-  /// Starts a search for the pairs closer than `distance` (> 0, finite).
-  void begin(double distance);
+  /// Starts a search for the pairs closer than `distance` (> 0, finite); `edge_edge_offset` is the search's
+  /// PairKeys::vertex_face_key_count(), added to the edge-edge keys.
+  void begin(double distance, std::uint64_t edge_edge_offset);
   /// Tests one block (see PairStage::run); returns the pairs within the distance.
   long run(ccd::PairBlock& block, const std::uint64_t* keys) override;
 
@@ -45,6 +46,7 @@ class ProximityStage final : public PairStage {
     StageCounts counts;
   };
   double distance_ = 0.0;
+  std::uint64_t edge_edge_offset_ = 0;
   tbb::enumerable_thread_specific<Worker> workers_;
 };
 

@@ -8,10 +8,11 @@
 
 namespace clothcd::detail {
 
-/// A record and its canonical sort key (PairKeys, within its kind).
+/// A record and its canonical sort key (PairKeys; edge-edge keys offset by PairKeys::vertex_face_key_count(), so that
+/// one key orders every record of a call).
 template <class Record>
 struct Keyed {
-  std::uint64_t key = 0;  ///< Sort key within its kind.
+  std::uint64_t key = 0;  ///< Sort key.
   Record record;          ///< The record.
 };
 

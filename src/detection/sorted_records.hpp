@@ -1,7 +1,7 @@
 #pragma once
 // A call's records (internal): gathered from a stage's threads within the record budget, put in canonical order by
-// their sort keys, and kept with those keys for a re-test of the same step. Record is Collision or Proximity: it has
-// `kind` and `vertices`.
+// their sort keys (unique within a call: the stages add the edge-edge offset, see Keyed), and kept with those keys
+// for a re-test of the same step (drop_moved needs a record with `vertices`).
 #include <cstdint>
 #include <vector>
 
@@ -22,12 +22,11 @@ class SortedRecords {
   /// How many there are.
   [[nodiscard]] std::size_t size() const { return records_.size(); }
 
-  /// Moves the records `stage` found (its record_count() and take_records()) into the list with their keys (edge-edge
-  /// keys go after every vertex-face key: `edge_edge_offset` is PairKeys::vertex_face_key_count()), freeing the
-  /// stage's chunks as it goes. Throws CollisionBudgetExceeded when the list would then hold more than `max_records`
-  /// (the search's last blocks may pass the budget after every thread's last check).
+  /// Moves the records `stage` found (its record_count() and take_records()) into the list with their keys, freeing
+  /// the stage's chunks as it goes. Throws CollisionBudgetExceeded when the list would then hold more than
+  /// `max_records` (the search's last blocks may pass the budget after every thread's last check).
   template <class Stage>
-  void take(Stage& stage, std::uint64_t edge_edge_offset, long max_records) {
+  void take(Stage& stage, long max_records) {
     const std::size_t total = records_.size() + stage.record_count();
     if (total > static_cast<std::size_t>(max_records)) {
       throw CollisionBudgetExceeded(static_cast<long>(total), max_records);
@@ -36,8 +35,7 @@ class SortedRecords {
     keys_.reserve(total);
     stage.take_records([&](const std::vector<Keyed<Record>>& chunk) {
       for (const Keyed<Record>& h : chunk) {
-        const std::uint64_t offset = h.record.kind == PairKind::EdgeEdge ? edge_edge_offset : 0;
-        keys_.push_back({h.key + offset, records_.size()});
+        keys_.push_back({h.key, records_.size()});
         records_.push_back(h.record);
       }
     });

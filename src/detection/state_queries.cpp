@@ -21,7 +21,7 @@ using detail::milliseconds_since;
 void fill_state_stats(const detail::StageCounts& found, double wall_ms, double task_ms, long records,
                       DetectionStats& stats) {
   const double scale = task_ms > 0 && task_ms >= found.exact_ms ? wall_ms / task_ms : 1.0;
-  stats.candidates_vertex_face = found.vertex_face;
+  stats.candidates_vertex_face = found.vertex_face + found.face_face;
   stats.candidates_edge_edge = found.edge_edge;
   stats.culled = found.culled;
   stats.collisions = records;
@@ -47,10 +47,10 @@ const std::vector<Proximity>& CollisionDetector::proximity(const PositionsRef& p
     t = Clock::now();
     d.frames = d.bodies.state_frames(d.state_positions);
     d.keys.assign(d.frames);
-    d.proximity_stage.begin(distance);
-    d.search_state(d.proximity_stage, d.plan.traversal, found, task_ms);
+    d.proximity_stage.begin(distance, d.keys.vertex_face_key_count());
+    d.search_state(d.proximity_stage, d.plan.traversal, d.budgeted(), found, task_ms);
     d.proximity_stage.take_counts(found);
-    d.proximities.take(d.proximity_stage, d.keys.vertex_face_key_count(), d.plan.settings.max_collisions);
+    d.proximities.take(d.proximity_stage, d.plan.settings.max_collisions);
     d.proximities.sort(false);
     wall_ms = milliseconds_since(t);
   } catch (...) {
@@ -80,7 +80,7 @@ MinimumDistance CollisionDetector::minimum_distance(const PositionsRef& position
     d.minimum_stage.begin(upper_bound, d.keys.vertex_face_key_count());
     broadphase::TraversalSettings traversal = d.plan.traversal;
     traversal.gap_bound = &d.minimum_stage.search_bound();
-    d.search_state(d.minimum_stage, traversal, found, task_ms);
+    d.search_state(d.minimum_stage, traversal, d.budgeted(), found, task_ms);
     d.minimum_stage.take_counts(found);
     const detail::KeyedProximity closest = d.minimum_stage.closest();
     answer.found = closest.record.distance < upper_bound;
@@ -94,6 +94,69 @@ MinimumDistance CollisionDetector::minimum_distance(const PositionsRef& position
   }
   fill_state_stats(found, wall_ms, task_ms, answer.found ? 1 : 0, d.stats);
   return answer;
+}
+
+void CollisionDetector::Impl::search_intersections(const detail::StreamLimits& limits, detail::StageCounts& found,
+                                                   double& wall_ms, double& task_ms) {
+  auto t = Clock::now();
+  stats.rebuilds = bodies.refit_state(state_positions, 0.0);
+  stats.refit_ms = milliseconds_since(t);
+  t = Clock::now();
+  frames = bodies.state_frames(state_positions);
+  keys.assign(frames);
+  intersection_stage.begin(frames, keys);
+  broadphase::TraversalSettings traversal = plan.traversal;
+  traversal.pairs = broadphase::SearchedPairs::FaceFace;
+  try {
+    search_state(intersection_stage, traversal, limits, found, task_ms);
+  } catch (const detail::SearchEnded&) {
+    // is_intersection_free's first crossing: the answer is known.
+  }
+  intersection_stage.take_counts(found);
+  wall_ms = milliseconds_since(t);
+}
+
+const std::vector<FaceIntersection>& CollisionDetector::intersections(const PositionsRef& positions) {
+  Impl& d = *impl_;
+  d.begin_state_call(positions, "intersections");
+  d.intersecting.clear();
+  detail::StageCounts found;
+  double wall_ms = 0, task_ms = 0;
+  try {
+    d.search_intersections(d.budgeted(), found, wall_ms, task_ms);
+    const auto t = Clock::now();
+    d.intersecting.take(d.intersection_stage, d.plan.settings.max_collisions);
+    d.intersecting.sort(false);
+    wall_ms += milliseconds_since(t);
+  } catch (...) {
+    d.intersecting.clear();
+    d.stream.discard();
+    d.intersection_stage.discard();
+    throw;
+  }
+  fill_state_stats(found, wall_ms, task_ms, static_cast<long>(d.intersecting.size()), d.stats);
+  return d.intersecting.records();
+}
+
+bool CollisionDetector::is_intersection_free(const PositionsRef& positions) {
+  Impl& d = *impl_;
+  d.begin_state_call(positions, "is_intersection_free");
+  detail::StageCounts found;
+  double wall_ms = 0, task_ms = 0;
+  detail::StreamLimits limits = d.budgeted();
+  limits.stop_at = 1;
+  std::size_t crossing = 0;
+  try {
+    d.search_intersections(limits, found, wall_ms, task_ms);
+    crossing = d.intersection_stage.record_count();
+  } catch (...) {
+    d.stream.discard();
+    d.intersection_stage.discard();
+    throw;
+  }
+  d.intersection_stage.discard();
+  fill_state_stats(found, wall_ms, task_ms, static_cast<long>(crossing), d.stats);
+  return crossing == 0;
 }
 
 }  // namespace clothcd

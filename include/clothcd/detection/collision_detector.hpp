@@ -15,6 +15,7 @@
 #include "clothcd/detection/collision.hpp"
 #include "clothcd/detection/detection_errors.hpp"
 #include "clothcd/detection/earliest_impact.hpp"
+#include "clothcd/detection/face_intersection.hpp"
 #include "clothcd/detection/proximity.hpp"
 #include "clothcd/mesh/positions_ref.hpp"
 #include "clothcd/mesh/triangle_mesh.hpp"
@@ -181,8 +182,21 @@ class CollisionDetector {
   MinimumDistance minimum_distance(const PositionsRef& positions,
                                    double upper_bound = std::numeric_limits<double>::infinity());
 
+  /// Every pair of intersecting faces at one state (the positions as proximity() takes them): the cloth's faces
+  /// against each other (with DetectorSettings::self_collision) and against every obstacle's, closed triangles, with
+  /// the semantics of face_intersection.hpp for faces sharing a vertex or an edge. Decided exactly (orientation signs
+  /// by a proven floating-point filter, then exact arithmetic; coplanar overlaps too). Sorted by the first face's
+  /// body and index, then the second's. The returned reference stays valid until the next intersections() call.
+  /// Throws as proximity() does (CollisionBudgetExceeded beyond DetectorSettings::max_collisions pairs).
+  const std::vector<FaceIntersection>& intersections(const PositionsRef& positions);
+
+  /// True when no pair of faces intersects at the state (intersections() would be empty); stops at the first
+  /// intersecting pair found. Throws as proximity() does.
+  bool is_intersection_free(const PositionsRef& positions);
+
   /// Counts and times of the last call (detect(), earliest_impact() or a state query; for a state query
-  /// candidates are the pairs tested, collisions the records found and exact_ms the distance tests).
+  /// candidates are the pairs tested (intersections(): the face pairs, counted as vertex-face), collisions the records
+  /// found and exact_ms their exact tests).
   [[nodiscard]] const DetectionStats& stats() const;
 
   /// Makes later detect() calls cancellable: the call's threads call `cancel` before each block of
