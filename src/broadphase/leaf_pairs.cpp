@@ -90,9 +90,8 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
   }
 }
 
-void leaf_face_pairs_between(const BodyView& a, const BodyView& b, int na, int nb,
-                             const std::atomic<double>* gap_bound, CandidateSet& out, TraversalStats& stats,
-                             LeafScratch& scratch) {
+void leaf_face_pairs_between(const BodyView& a, const BodyView& b, int na, int nb, const std::atomic<double>* gap_bound,
+                             CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
   if (gap_bound == nullptr) {
     CLOTHCD_SIMD_DISPATCH(scratch.level, face_pairs_between_lanes(a, b, na, nb, Touching{}, out, stats, scratch));
   } else {

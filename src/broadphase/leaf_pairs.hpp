@@ -63,9 +63,8 @@ void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* 
 /// Face pairs (CandidateSet::face_face) of leaf `na` of body a and leaf `nb` of body b (different bodies, a.body <
 /// b.body) into `out`: every face of one against every face of the other whose boxes overlap (with `gap_bound`: are
 /// within its value).
-void leaf_face_pairs_between(const BodyView& a, const BodyView& b, int na, int nb,
-                             const std::atomic<double>* gap_bound, CandidateSet& out, TraversalStats& stats,
-                             LeafScratch& scratch);
+void leaf_face_pairs_between(const BodyView& a, const BodyView& b, int na, int nb, const std::atomic<double>* gap_bound,
+                             CandidateSet& out, TraversalStats& stats, LeafScratch& scratch);
 
 /// Face pairs of leaves `na` and `nb` of one body (na == nb: the leaf against itself) into `out`, faces sharing
 /// vertices included, each pair once with face_a < face_b, never a face with itself. With `gap_bound`, the pairs

@@ -187,8 +187,8 @@ void query_moved_self_within(const BodyView& body, const std::vector<std::uint8_
 // Each moved vertex of a against b's faces, each moved face of a against b's vertices, each moved edge of a against
 // b's edges.
 template <class Reach>
-void query_moved_pair_within(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved,
-                             Reach reach, std::size_t chunk_pairs, CandidateSink& sink, TraversalStats& stats) {
+void query_moved_pair_within(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved, Reach reach,
+                             std::size_t chunk_pairs, CandidateSink& sink, TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
   CandidateSet out;

@@ -4,7 +4,8 @@
 // the moved-vertex queries descend on. Each is conservative: it never reports separation for volumes whose contents
 // overlap (the OBB test widens its projected radii slightly to absorb rounding). Each takes the search's gap bound
 // through `Reach` (Touching or WithinBound, gap_bound.hpp): with a bound, volumes within it of each other pass.
-// The separations order a bounded search's node pairs, nearer first; any value would be correct there.
+// The separations order a bounded search's node pairs, nearer first; any value would be correct there. The tests are
+// forced inline: the descent calls them once per node pair, and GCC, left to itself, calls them out of line.
 
 #include <cmath>
 
@@ -33,7 +34,9 @@ struct BoxBox {
   /// Whether the tests read a gap bound (the descent then orders child pairs by separation()).
   static constexpr bool kBounded = Reach::kBounded;
   /// True when the boxes of node i of `a` and node j of `b` overlap (or are within the bound).
-  bool operator()(int i, int j) const { return within(a->boxes()[i], b->boxes()[j], reach.gap()); }
+  [[gnu::always_inline]] bool operator()(int i, int j) const {
+    return within(a->boxes()[i], b->boxes()[j], reach.gap());
+  }
   /// How far apart the boxes are (box_separation).
   [[nodiscard]] double separation(int i, int j) const { return box_separation(a->boxes()[i], b->boxes()[j]); }
 };
@@ -47,7 +50,7 @@ struct SphereThenBox {
   /// Whether the tests read a gap bound (the descent then orders child pairs by separation()).
   static constexpr bool kBounded = Reach::kBounded;
   /// True when the spheres and then the boxes of node i of `a` and node j of `b` overlap (or are within the bound).
-  bool operator()(int i, int j) const {
+  [[gnu::always_inline]] bool operator()(int i, int j) const {
     return within(a->spheres()[i], b->spheres()[j], reach.gap()) && within(a->boxes()[i], b->boxes()[j], reach.gap());
   }
   /// How far apart the boxes are (box_separation).
@@ -63,7 +66,9 @@ struct BoxObb {
   /// Whether the tests read a gap bound (the descent then orders child pairs by separation()).
   static constexpr bool kBounded = Reach::kBounded;
   /// True unless a separating axis parts the box of node i of `a` (grown by the bound) from the OBB of node j of `b`.
-  bool operator()(int i, int j) const { return within(a->boxes()[i], b->obbs()[j], reach.gap()); }
+  [[gnu::always_inline]] bool operator()(int i, int j) const {
+    return within(a->boxes()[i], b->obbs()[j], reach.gap());
+  }
   /// The squared distance of the box's centre from the OBB's centre.
   [[nodiscard]] double separation(int i, int j) const {
     const FlatBox& box = a->boxes()[i];

@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "broadphase_scenes.hpp"
 #include "broadphase/brute_force_candidates.hpp"
 #include "broadphase/candidates.hpp"
 #include "broadphase/collecting_sink.hpp"
+#include "broadphase_scenes.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
@@ -83,9 +83,9 @@ void check_scene(const TestBody& first, const TestBody& second, bool parallel) {
 }  // namespace
 
 TEST_CASE("face pair searches match brute force on a cloth draped over obstacles", "[broadphase][faces]") {
-  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
-                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
-                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const auto kinds =
+      GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const int leaf = GENERATE(1, 3, 32);  // 32 (the default): leaves span several groups of the packed tests
   const bool parallel = GENERATE(false, true);
   const int seed = GENERATE(1, 2);
@@ -114,9 +114,9 @@ TEST_CASE("face pair searches match brute force on a folded cloth searched in ta
 }
 
 TEST_CASE("face pair searches match brute force on random triangle soups", "[broadphase][faces][random]") {
-  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
-                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
-                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const auto kinds =
+      GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const int seed = GENERATE(range(40, 46));
   // Far from the origin the single-precision pre-selection is much coarser than the features; only the
   // double-precision boxes decide.

@@ -13,11 +13,11 @@
 #include <random>
 #include <vector>
 
-#include "broadphase_scenes.hpp"
 #include "broadphase/brute_force_candidates.hpp"
 #include "broadphase/candidates.hpp"
 #include "broadphase/collecting_sink.hpp"
 #include "broadphase/gap_bound.hpp"
+#include "broadphase_scenes.hpp"
 #include "clothcd/mesh/mesh_generators.hpp"
 #include "support/simd_level.hpp"
 #include "support/simd_limit.hpp"
@@ -126,9 +126,9 @@ TraversalSettings bounded(bool parallel, SearchedPairs pairs, const std::atomic<
 }  // namespace
 
 TEST_CASE("a fixed gap bound finds exactly the brute-force pairs within it", "[broadphase][gap]") {
-  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
-                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
-                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const auto kinds =
+      GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const SearchedPairs pairs = GENERATE(SearchedPairs::VertexFaceEdgeEdge, SearchedPairs::FaceFace);
   const double gap = GENERATE(0.0, 0.004, 0.03, 0.2, kInfinity);
   const bool parallel = GENERATE(false, true);
@@ -158,9 +158,9 @@ TEST_CASE("a fixed gap bound finds exactly the brute-force pairs within it", "[b
 }
 
 TEST_CASE("a gap bound of 0 is the search without one", "[broadphase][gap]") {
-  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
-                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
-                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const auto kinds =
+      GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const SearchedPairs pairs = GENERATE(SearchedPairs::VertexFaceEdgeEdge, SearchedPairs::FaceFace);
   std::mt19937 rng(8);
   const TriangleMesh cloth = draped_cloth(16);
@@ -190,9 +190,9 @@ TEST_CASE("a gap bound of 0 is the search without one", "[broadphase][gap]") {
 }
 
 TEST_CASE("a gap bound on searches restricted to moved vertices", "[broadphase][gap][moved]") {
-  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
-                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
-                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const auto kinds =
+      GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   // Below 1 / kMovedQueryShare the primitive queries, above it the restricted descent.
   const double moved_share = GENERATE(0.03, 0.3);
   const double gap = GENERATE(0.02, 0.2);
@@ -232,9 +232,9 @@ TEST_CASE("a gap bound on searches restricted to moved vertices", "[broadphase][
 }
 
 TEST_CASE("a bound lowered by the sink prunes nothing within its final value", "[broadphase][gap][branch-and-bound]") {
-  const auto kinds = GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb},
-                              KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
-                              KindPair{VolumeKind::Aabb, VolumeKind::Obb});
+  const auto kinds =
+      GENERATE(KindPair{VolumeKind::Aabb, VolumeKind::Aabb}, KindPair{VolumeKind::Sphere, VolumeKind::Sphere},
+               KindPair{VolumeKind::Aabb, VolumeKind::Obb});
   const SearchedPairs pairs = GENERATE(SearchedPairs::VertexFaceEdgeEdge, SearchedPairs::FaceFace);
   const bool parallel = GENERATE(false, true);
   const std::size_t chunk = GENERATE(std::size_t{1}, std::size_t{64});
