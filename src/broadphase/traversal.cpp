@@ -257,6 +257,9 @@ void check_settings(const TraversalSettings& settings) {
   if (settings.pairs == SearchedPairs::FaceFace && settings.moved_vertices != nullptr) {
     throw std::invalid_argument("broad phase: a face pair search cannot be restricted to moved vertices");
   }
+  if (settings.gap_bound != nullptr && !(settings.gap_bound->load(std::memory_order_relaxed) >= 0.0)) {
+    throw std::invalid_argument("broad phase: gap_bound must be >= 0");
+  }
 }
 
 // find_self_candidates into `output`.

@@ -66,9 +66,9 @@ struct TraversalSettings {
   /// are within it along every axis (each per-axis difference of their bounds, rounded, at most the value). The value
   /// is read (memory_order_relaxed) at each node test and for each primitive's tests, so a sink (or any thread) that
   /// lowers it while the search runs prunes the rest of the search, and the descent visits the nearer of two child
-  /// pairs first. It must be >= 0 (+infinity: every pair) and may only be lowered during the search: every pair within
-  /// its final value is produced, and pairs within an earlier value may be too. 0 produces the pairs of the search
-  /// without a bound. Must stay valid during the call.
+  /// pairs first. It must be >= 0 (+infinity: every pair; std::invalid_argument for a negative or NaN value at the
+  /// start) and may only be lowered during the search: every pair within its final value is produced, and pairs within
+  /// an earlier value may be too. 0 produces the pairs of the search without a bound. Must stay valid during the call.
   const std::atomic<double>* gap_bound = nullptr;
 };
 

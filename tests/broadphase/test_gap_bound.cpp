@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "broadphase/brute_force_candidates.hpp"
@@ -187,6 +188,22 @@ TEST_CASE("a gap bound of 0 is the search without one", "[broadphase][gap]") {
   CHECK(self_zero_stats.primitive_tests == self_plain_stats.primitive_tests);
   CHECK(pair_zero_stats.volume_tests == pair_plain_stats.volume_tests);
   CHECK(pair_zero_stats.primitive_tests == pair_plain_stats.primitive_tests);
+}
+
+TEST_CASE("a negative or NaN gap bound is refused", "[broadphase][gap]") {
+  const TriangleMesh cloth = make_grid(6, 6);
+  TestBody a(cloth, cloth.vertices, 0.0, {VolumeKind::Aabb, 2});
+  TestBody b(cloth, cloth.vertices, 0.0, {VolumeKind::Aabb, 2});
+  for (const double wrong : {-1e-300, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    const std::atomic<double> bound{wrong};
+    CandidateSet out;
+    CHECK_THROWS_AS(find_self_candidates(a.view(0), bounded(false, SearchedPairs::FaceFace, bound), out),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(
+        find_pair_candidates(a.view(0), b.view(1), bounded(false, SearchedPairs::VertexFaceEdgeEdge, bound), out),
+        std::invalid_argument);
+    CHECK(out.size() == 0);
+  }
 }
 
 TEST_CASE("a gap bound on searches restricted to moved vertices", "[broadphase][gap][moved]") {
