@@ -43,21 +43,41 @@ struct EdgeEdgeCandidate {
   }
 };
 
+/// Face `face_a` of body `body_a` against face `face_b` of body `body_b`, the pairs of a search for intersecting faces
+/// (SearchedPairs::FaceFace). Within one body face_a < face_b; between bodies body_a < body_b.
+struct FaceFaceCandidate {
+  std::int32_t body_a = 0;  ///< Body of the first face.
+  std::int32_t face_a = 0;  ///< First face.
+  std::int32_t body_b = 0;  ///< Body of the second face.
+  std::int32_t face_b = 0;  ///< Second face.
+
+  /// Lexicographic order (body_a, face_a, body_b, face_b): the canonical output order.
+  [[nodiscard]] bool operator<(const FaceFaceCandidate& o) const {
+    return std::tie(body_a, face_a, body_b, face_b) < std::tie(o.body_a, o.face_a, o.body_b, o.face_b);
+  }
+  /// Field-wise equality.
+  [[nodiscard]] bool operator==(const FaceFaceCandidate& o) const {
+    return body_a == o.body_a && face_a == o.face_a && body_b == o.body_b && face_b == o.face_b;
+  }
+};
+
 /// Every candidate pair of a step, without duplicates, in canonical (sorted) order once finalized.
 struct CandidateSet {
   std::vector<VertexFaceCandidate> vertex_face;  ///< Vertex-face candidates.
   std::vector<EdgeEdgeCandidate> edge_edge;      ///< Edge-edge candidates.
+  std::vector<FaceFaceCandidate> face_face;      ///< Face-face candidates (only a SearchedPairs::FaceFace search).
 
-  /// Empties both arrays, keeping their storage.
+  /// Empties the arrays, keeping their storage.
   void clear() {
     vertex_face.clear();
     edge_edge.clear();
+    face_face.clear();
   }
   /// Total number of candidates.
-  [[nodiscard]] std::size_t size() const { return vertex_face.size() + edge_edge.size(); }
+  [[nodiscard]] std::size_t size() const { return vertex_face.size() + edge_edge.size() + face_face.size(); }
 };
 
-/// Sorts both arrays into canonical order (the hierarchies already produce no duplicates).
+/// Sorts the arrays into canonical order (the hierarchies already produce no duplicates).
 void sort_candidates(CandidateSet& candidates);
 
 }  // namespace clothcd::broadphase

@@ -8,6 +8,7 @@ void CollectingSink::consume(const CandidateSet& chunk) {
   const std::lock_guard<std::mutex> lock(mutex_);
   out_.vertex_face.insert(out_.vertex_face.end(), chunk.vertex_face.begin(), chunk.vertex_face.end());
   out_.edge_edge.insert(out_.edge_edge.end(), chunk.edge_edge.begin(), chunk.edge_edge.end());
+  out_.face_face.insert(out_.face_face.end(), chunk.face_face.begin(), chunk.face_face.end());
 }
 
 void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSet& out,

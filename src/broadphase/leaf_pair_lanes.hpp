@@ -1,6 +1,7 @@
 // The leaf-pair kernels of leaf_pairs.cpp, written once on the vector layer (support/simd.hpp) and compiled there
 // once per level by support/simd_versions.hpp (four lanes at the baseline, eight from AVX2 up), after the standard
-// headers and the width-independent helpers (Range, vertex_range, edge_range, packed_leaf_box, exclude_none).
+// headers and the width-independent helpers (Range, vertex_range, edge_range, leaf_query, exclude_none). The kernels
+// take the search's gap bound as `Reach` (Touching or WithinBound, gap_bound.hpp) and each test's gap from it.
 // No include guard and no includes of its own, on purpose.
 
 // The lane tests on packed data, as bits (bit k for position j + k).
@@ -106,25 +107,27 @@ Range near_span(const PackedBoxes& boxes, Range range, const PackedBox& q) {
 }
 
 // Pairs each selected primitive i of a first set (scratch.selected[0..selected), positions in its tree-ordered arrays)
-// with the positions j in range_of(i) of a second set whose boxes overlap i's box: the packed boxes lanes::kFloatLanes at a
-// time, minus the lanes whose bits excluded_for(i)(j) sets (pairs that must not be produced), then the
-// double-precision boxes. Calls emit(i, j) for each pair found and returns how many primitive pairs it looked at.
-template <class RangeOf, class ExcludedFor, class Emit>
+// with the positions j in range_of(i) of a second set whose boxes overlap i's box (are within the gap of it): the
+// packed boxes lanes::kFloatLanes at a time, minus the lanes whose bits excluded_for(i)(j) sets (pairs that must not
+// be produced), then the double-precision boxes. Calls emit(i, j) for each pair found and returns how many primitive
+// pairs it looked at.
+template <class Reach, class RangeOf, class ExcludedFor, class Emit>
 long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, const PackedBoxes& second_packed,
-                   const FlatBox* second_boxes, int selected, LeafScratch& scratch, const RangeOf& range_of,
-                   const ExcludedFor& excluded_for, const Emit& emit) {
+                   const FlatBox* second_boxes, int selected, const Reach& reach, LeafScratch& scratch,
+                   const RangeOf& range_of, const ExcludedFor& excluded_for, const Emit& emit) {
   long looked_at = 0;
   for (int k = 0; k < selected; ++k) {
     const int i = scratch.selected[k];
     const FlatBox& box = first_boxes[i];
-    const PackedBox q = first_packed.at(i);
+    const auto gap = reach.gap();
+    const PackedBox q = packed_reach(box, first_packed.at(i), gap);
     const Range range = range_of(i);
     const auto excluded = excluded_for(i);
     looked_at += range.end - range.begin;
     const int hits = collect_packed(
         range.begin, range.end, scratch.hits,
         [&](int j) { return overlap_bits(second_packed, j, q) & ~excluded(j); },
-        [&](int j) { return box.overlaps(second_boxes[j]); });
+        [&](int j) { return within(box, second_boxes[j], gap); });
     for (int h = 0; h < hits; ++h) emit(i, scratch.hits[h]);
   }
   return looked_at;
@@ -133,13 +136,16 @@ long pair_selected(const PackedBoxes& first_packed, const FlatBox* first_boxes, 
 // Primitive tests of two leaves of different bodies, lanes::kFloatLanes at a time. Boxes are read in tree order
 // (contiguous per leaf); each primitive is first tested against the other leaf's box.
 // With `moved` (flags per vertex of body a), only pairs with a moved vertex of body a are produced.
+template <class Reach>
 CLOTHCD_SIMD_ENTRY void between_lanes(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
-                       CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
+                                      const Reach& reach, CandidateSet& out, TraversalStats& stats,
+                                      LeafScratch& scratch) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
   const BvhNode& la = ta.nodes()[na];
   const BvhNode& lb = tb.nodes()[nb];
-  const PackedBox box_a = packed_leaf_box(ta, na), box_b = packed_leaf_box(tb, nb);
+  const auto gap = reach.gap();
+  const PackedBox box_a = leaf_query(ta, na, gap), box_b = leaf_query(tb, nb, gap);
   // Whether the vertex at owned position i of the vertex body, or the face at tree position p of the face body, brings
   // a moved vertex of body a into the pair.
   auto wanted = [&](bool vertex_in_a, int i, int p) {
@@ -164,7 +170,7 @@ CLOTHCD_SIMD_ENTRY void between_lanes(const BodyView& a, const BodyView& b, int 
                                          vertex_leaf_box);
     stats.primitive_tests += face_leaf.face_end - face_leaf.face_begin;
     stats.primitive_tests += pair_selected(
-        tv.packed_vertex_boxes(), vertex_boxes, tf.packed_face_boxes(), face_boxes, selected, scratch,
+        tv.packed_vertex_boxes(), vertex_boxes, tf.packed_face_boxes(), face_boxes, selected, reach, scratch,
         [&](int) { return faces; }, exclude_none, [&](int i, int p) {
           if (wanted(vertex_in_a, i, p)) {
             out.vertex_face.push_back({vertex_body.body, tv.owned_vertices()[i], face_body.body, tf.face_order()[p]});
@@ -192,7 +198,7 @@ CLOTHCD_SIMD_ENTRY void between_lanes(const BodyView& a, const BodyView& b, int 
   const Range near_b = near_span(tb.packed_edge_boxes(), eb, box_a);
   stats.primitive_tests += (eb.end - eb.begin);
   stats.primitive_tests += pair_selected(
-      ta.packed_edge_boxes(), edge_boxes_a, tb.packed_edge_boxes(), edge_boxes_b, selected, scratch,
+      ta.packed_edge_boxes(), edge_boxes_a, tb.packed_edge_boxes(), edge_boxes_b, selected, reach, scratch,
       [&](int) { return near_b; }, exclude_none,
       [&](int i, int j) { out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]}); });
 }
@@ -200,8 +206,10 @@ CLOTHCD_SIMD_ENTRY void between_lanes(const BodyView& a, const BodyView& b, int 
 // Primitive tests of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself, lanes::kFloatLanes at a
 // time. Each primitive is first tested against the other leaf's box; a pair passes when the boxes overlap and no
 // vertex is shared. With `moved` (flags per vertex), only pairs with a moved vertex are produced.
-CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
-                      TraversalStats& stats, LeafScratch& scratch) {
+template <class Reach>
+CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const std::uint8_t* moved,
+                                     const Reach& reach, CandidateSet& out, TraversalStats& stats,
+                                     LeafScratch& scratch) {
   const Bvh& t = *body.bvh;
   const BvhNode& la = t.nodes()[na];
   const BvhNode& lb = t.nodes()[nb];
@@ -222,7 +230,7 @@ CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const
     const Range near_faces = same ? all_faces : near_span(t.packed_face_boxes(), all_faces, vertex_leaf_box);
     stats.primitive_tests += same ? 0 : all_faces.end - all_faces.begin;
     stats.primitive_tests += pair_selected(
-        t.packed_vertex_boxes(), vertex_boxes, t.packed_face_boxes(), face_boxes, selected, scratch,
+        t.packed_vertex_boxes(), vertex_boxes, t.packed_face_boxes(), face_boxes, selected, reach, scratch,
         [&](int) { return near_faces; },
         [&](int i) {
           const int v = t.owned_vertices()[i];
@@ -236,7 +244,8 @@ CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const
           }
         });
   };
-  const PackedBox box_a = packed_leaf_box(t, na), box_b = packed_leaf_box(t, nb);
+  const auto gap = reach.gap();
+  const PackedBox box_a = leaf_query(t, na, gap), box_b = leaf_query(t, nb, gap);
   vertices_against_faces(la, box_a, lb, box_b);
   if (!same) vertices_against_faces(lb, box_b, la, box_a);
   const Range ea = edge_range(t, la);
@@ -246,7 +255,7 @@ CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const
   const Range eb = same ? ea : near_span(t.packed_edge_boxes(), edge_range(t, lb), box_a);
   stats.primitive_tests += same ? 0 : edge_range(t, lb).end - edge_range(t, lb).begin;
   stats.primitive_tests += pair_selected(
-      t.packed_edge_boxes(), edge_boxes, t.packed_edge_boxes(), edge_boxes, selected, scratch,
+      t.packed_edge_boxes(), edge_boxes, t.packed_edge_boxes(), edge_boxes, selected, reach, scratch,
       [&](int i) { return Range{same ? i + 1 : eb.begin, eb.end}; },
       [&](int i) {
         const int a0 = edges[2 * i], a1 = edges[2 * i + 1];
@@ -263,9 +272,60 @@ CLOTHCD_SIMD_ENTRY void within_lanes(const BodyView& body, int na, int nb, const
       });
 }
 
+// Face pairs of two leaves of different bodies, lanes::kFloatLanes at a time: each face of `na` is first tested against
+// the other leaf's box, then against the span of the other leaf's faces that may touch this leaf's box.
+template <class Reach>
+CLOTHCD_SIMD_ENTRY void face_pairs_between_lanes(const BodyView& a, const BodyView& b, int na, int nb,
+                                                 const Reach& reach, CandidateSet& out, TraversalStats& stats,
+                                                 LeafScratch& scratch) {
+  const Bvh& ta = *a.bvh;
+  const Bvh& tb = *b.bvh;
+  const BvhNode& la = ta.nodes()[na];
+  const BvhNode& lb = tb.nodes()[nb];
+  const auto gap = reach.gap();
+  const PackedBox box_a = leaf_query(ta, na, gap), box_b = leaf_query(tb, nb, gap);
+  const int selected = select_packed(ta.packed_face_boxes(), la.face_begin, la.face_end, box_b, scratch.selected);
+  stats.primitive_tests += la.face_end - la.face_begin;
+  if (selected == 0) return;
+  const Range near_b = near_span(tb.packed_face_boxes(), Range{lb.face_begin, lb.face_end}, box_a);
+  stats.primitive_tests += lb.face_end - lb.face_begin;
+  stats.primitive_tests += pair_selected(
+      ta.packed_face_boxes(), ta.ordered_face_boxes().data(), tb.packed_face_boxes(), tb.ordered_face_boxes().data(),
+      selected, reach, scratch, [&](int) { return near_b; }, exclude_none,
+      [&](int i, int j) { out.face_face.push_back({a.body, ta.face_order()[i], b.body, tb.face_order()[j]}); });
+}
+
+// Face pairs of two leaves (na != nb) of one body, or of one leaf (na == nb) against itself (each face against the
+// later ones), lanes::kFloatLanes at a time; faces sharing vertices are paired too.
+template <class Reach>
+CLOTHCD_SIMD_ENTRY void face_pairs_within_lanes(const BodyView& body, int na, int nb, const Reach& reach,
+                                                CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
+  const Bvh& t = *body.bvh;
+  const BvhNode& la = t.nodes()[na];
+  const BvhNode& lb = t.nodes()[nb];
+  const bool same = na == nb;
+  const auto gap = reach.gap();
+  const PackedBox box_a = leaf_query(t, na, gap), box_b = leaf_query(t, nb, gap);
+  const int selected = select_packed(t.packed_face_boxes(), la.face_begin, la.face_end, box_b, scratch.selected);
+  stats.primitive_tests += la.face_end - la.face_begin;
+  if (selected == 0) return;
+  const Range all_b{lb.face_begin, lb.face_end};
+  const Range near_b = same ? all_b : near_span(t.packed_face_boxes(), all_b, box_a);
+  stats.primitive_tests += same ? 0 : all_b.end - all_b.begin;
+  const FlatBox* boxes = t.ordered_face_boxes().data();
+  stats.primitive_tests += pair_selected(
+      t.packed_face_boxes(), boxes, t.packed_face_boxes(), boxes, selected, reach, scratch,
+      [&](int i) { return Range{same ? i + 1 : near_b.begin, near_b.end}; }, exclude_none, [&](int i, int j) {
+        const int f = t.face_order()[i], h = t.face_order()[j];
+        out.face_face.push_back({body.body, f < h ? f : h, body.body, f < h ? h : f});
+      });
+}
+
 // leaf_primitives_overlapping, lanes::kFloatLanes primitives at a time.
-CLOTHCD_SIMD_ENTRY int overlapping_lanes(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box, const PackedBox& packed,
-                       LeafScratch& scratch, std::vector<int>& out) {
+template <class Gap>
+CLOTHCD_SIMD_ENTRY int overlapping_lanes(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
+                                         const PackedBox& packed, Gap gap, LeafScratch& scratch,
+                                         std::vector<int>& out) {
   const BvhNode& node = bvh.nodes()[leaf];
   const Range range = kind == LeafPrimitives::Vertices ? vertex_range(bvh, node)
                       : kind == LeafPrimitives::Edges  ? edge_range(bvh, node)
@@ -279,7 +339,7 @@ CLOTHCD_SIMD_ENTRY int overlapping_lanes(const Bvh& bvh, int leaf, LeafPrimitive
   const int selected = select_packed(packed_boxes, range.begin, range.end, packed, scratch.selected);
   for (int k = 0; k < selected; ++k) {
     const int i = scratch.selected[k];
-    if (boxes[i].overlaps(box)) out.push_back(i);
+    if (within(boxes[i], box, gap)) out.push_back(i);
   }
   return range.end - range.begin;
 }

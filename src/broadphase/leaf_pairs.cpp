@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "broadphase/bvh.hpp"
+#include "broadphase/gap_bound.hpp"
 #include "broadphase/packed_boxes.hpp"
 #include "support/simd.hpp"
 
@@ -35,11 +36,15 @@ FlatBox leaf_box(const Bvh& bvh, int node) {
   return b;
 }
 
-// The leaf's box as an outward-rounded float box: the packed node box, or packed from leaf_box() for OBB hierarchies.
-PackedBox packed_leaf_box(const Bvh& bvh, int node) {
+// The query of the other leaf's primitives by leaf `node`'s box, as an outward-rounded float box: the packed node box,
+// or packed from leaf_box() for OBB hierarchies.
+PackedBox leaf_query(const Bvh& bvh, int node, NoGap) {
   if (bvh.packed_node_boxes().size() > 0) return bvh.packed_node_boxes().at(node);
   return pack_box(leaf_box(bvh, node));
 }
+
+// The query by leaf `node`'s box within `gap` (packed_reach).
+PackedBox leaf_query(const Bvh& bvh, int node, double gap) { return pack_box(reach_box(leaf_box(bvh, node), gap)); }
 
 // No pair excluded (primitives of different bodies never share a vertex).
 auto exclude_none(int) {
@@ -53,18 +58,56 @@ auto exclude_none(int) {
 }  // namespace
 
 int leaf_primitives_overlapping(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
-                                const PackedBox& packed, LeafScratch& scratch, std::vector<int>& out) {
-  return CLOTHCD_SIMD_DISPATCH(scratch.level, overlapping_lanes(bvh, leaf, kind, box, packed, scratch, out));
+                                const PackedBox& packed, NoGap gap, LeafScratch& scratch, std::vector<int>& out) {
+  return CLOTHCD_SIMD_DISPATCH(scratch.level, overlapping_lanes(bvh, leaf, kind, box, packed, gap, scratch, out));
 }
 
+int leaf_primitives_overlapping(const Bvh& bvh, int leaf, LeafPrimitives kind, const FlatBox& box,
+                                const PackedBox& packed, double gap, LeafScratch& scratch, std::vector<int>& out) {
+  return CLOTHCD_SIMD_DISPATCH(scratch.level, overlapping_lanes(bvh, leaf, kind, box, packed, gap, scratch, out));
+}
+
+// Each leaf pair takes the kernel of the search's kind, with or without a gap bound: one branch per leaf pair.
 void leaf_pair_between(const BodyView& a, const BodyView& b, int na, int nb, const std::uint8_t* moved,
-                       CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
-  CLOTHCD_SIMD_DISPATCH(scratch.level, between_lanes(a, b, na, nb, moved, out, stats, scratch));
+                       const std::atomic<double>* gap_bound, CandidateSet& out, TraversalStats& stats,
+                       LeafScratch& scratch) {
+  if (gap_bound == nullptr) {
+    CLOTHCD_SIMD_DISPATCH(scratch.level, between_lanes(a, b, na, nb, moved, Touching{}, out, stats, scratch));
+  } else {
+    CLOTHCD_SIMD_DISPATCH(scratch.level,
+                          between_lanes(a, b, na, nb, moved, WithinBound{gap_bound}, out, stats, scratch));
+  }
 }
 
-void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved, CandidateSet& out,
-                      TraversalStats& stats, LeafScratch& scratch) {
-  CLOTHCD_SIMD_DISPATCH(scratch.level, within_lanes(body, na, nb, moved, out, stats, scratch));
+void leaf_pair_within(const BodyView& body, int na, int nb, const std::uint8_t* moved,
+                      const std::atomic<double>* gap_bound, CandidateSet& out, TraversalStats& stats,
+                      LeafScratch& scratch) {
+  if (gap_bound == nullptr) {
+    CLOTHCD_SIMD_DISPATCH(scratch.level, within_lanes(body, na, nb, moved, Touching{}, out, stats, scratch));
+  } else {
+    CLOTHCD_SIMD_DISPATCH(scratch.level,
+                          within_lanes(body, na, nb, moved, WithinBound{gap_bound}, out, stats, scratch));
+  }
+}
+
+void leaf_face_pairs_between(const BodyView& a, const BodyView& b, int na, int nb, const std::atomic<double>* gap_bound,
+                             CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
+  if (gap_bound == nullptr) {
+    CLOTHCD_SIMD_DISPATCH(scratch.level, face_pairs_between_lanes(a, b, na, nb, Touching{}, out, stats, scratch));
+  } else {
+    CLOTHCD_SIMD_DISPATCH(scratch.level,
+                          face_pairs_between_lanes(a, b, na, nb, WithinBound{gap_bound}, out, stats, scratch));
+  }
+}
+
+void leaf_face_pairs_within(const BodyView& body, int na, int nb, const std::atomic<double>* gap_bound,
+                            CandidateSet& out, TraversalStats& stats, LeafScratch& scratch) {
+  if (gap_bound == nullptr) {
+    CLOTHCD_SIMD_DISPATCH(scratch.level, face_pairs_within_lanes(body, na, nb, Touching{}, out, stats, scratch));
+  } else {
+    CLOTHCD_SIMD_DISPATCH(scratch.level,
+                          face_pairs_within_lanes(body, na, nb, WithinBound{gap_bound}, out, stats, scratch));
+  }
 }
 
 int packed_lane_width(SimdLevel level) { return CLOTHCD_SIMD_DISPATCH(level, lanes::kFloatLanes); }

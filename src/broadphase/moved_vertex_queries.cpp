@@ -2,10 +2,12 @@
 // the hierarchies, leaf by leaf of the moved body, instead of a descent of the hierarchies against each other.
 #include "broadphase/moved_vertex_queries.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "broadphase/gap_bound.hpp"
 #include "broadphase/leaf_pairs.hpp"
 #include "broadphase/node_overlaps.hpp"
 #include "broadphase/packed_boxes.hpp"
@@ -18,14 +20,17 @@ namespace {
 // leaf by leaf of the moved one: the union of a leaf's moved faces bounds all its moved primitives (a moved vertex or
 // edge lies in its owning face, which moved too), so one descent with it finds every leaf of the searched hierarchy
 // that a moved primitive of the leaf may touch; each moved primitive is then tested against those leaves only.
+// `Reach`: the search's gap bound (gap_bound.hpp), read at each descent and at each primitive's query.
+template <class Reach>
 class MovedQueries {
  public:
   // The candidates go to `out`, and from there to `sink` in chunks of `chunk` pairs (see pass_on).
-  MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved, CandidateSet& out,
-               CandidateSink& sink, std::size_t chunk, TraversalStats& stats)
+  MovedQueries(const Bvh& moved_tree, const Bvh& searched, const std::vector<std::uint8_t>& moved, Reach reach,
+               CandidateSet& out, CandidateSink& sink, std::size_t chunk, TraversalStats& stats)
       : moved_tree_(moved_tree),
         searched_(searched),
         moved_(moved),
+        reach_(reach),
         out_(out),
         sink_(sink),
         chunk_(chunk),
@@ -80,7 +85,7 @@ class MovedQueries {
     out_.clear();
   }
 
-  // The leaves of the searched hierarchy whose volume overlaps `box`, into leaves_.
+  // The leaves of the searched hierarchy whose volume overlaps `box` (is within the bound of it), into leaves_.
   void find_leaves(const FlatBox& box) {
     leaves_.clear();
     stack_.assign(1, 0);
@@ -88,7 +93,7 @@ class MovedQueries {
       const int n = stack_.back();
       stack_.pop_back();
       ++stats_.volume_tests;
-      if (!box_overlaps_node(box, searched_, n)) continue;
+      if (!box_overlaps_node(box, searched_, n, reach_.gap())) continue;
       const BvhNode& node = searched_.nodes()[n];
       if (node.is_leaf()) {
         leaves_.push_back(n);
@@ -99,15 +104,17 @@ class MovedQueries {
     }
   }
 
-  // Positions of the searched hierarchy's primitives of `kind` in leaves_ whose boxes overlap `box`.
+  // Positions of the searched hierarchy's primitives of `kind` in leaves_ whose boxes overlap `box` (are within the
+  // bound of it).
   const std::vector<int>& hits(LeafPrimitives kind, const FlatBox& box) {
     hits_.clear();
-    const PackedBox packed = pack_box(box);
+    const auto gap = reach_.gap();
+    const PackedBox packed = packed_reach(box, pack_box(box), gap);
     for (const int leaf : leaves_) {
       // The leaf's box first, where the hierarchy keeps one: most of a group's leaves miss a single primitive.
       ++stats_.volume_tests;
-      if (!searched_.boxes().empty() && !searched_.boxes()[leaf].overlaps(box)) continue;
-      stats_.primitive_tests += leaf_primitives_overlapping(searched_, leaf, kind, box, packed, scratch_, hits_);
+      if (!searched_.boxes().empty() && !within(searched_.boxes()[leaf], box, gap)) continue;
+      stats_.primitive_tests += leaf_primitives_overlapping(searched_, leaf, kind, box, packed, gap, scratch_, hits_);
     }
     return hits_;
   }
@@ -115,6 +122,7 @@ class MovedQueries {
   const Bvh& moved_tree_;
   const Bvh& searched_;
   const std::vector<std::uint8_t>& moved_;
+  Reach reach_;
   CandidateSet& out_;
   CandidateSink& sink_;
   std::size_t chunk_;
@@ -133,16 +141,19 @@ bool few_moved(const std::vector<std::uint8_t>& moved) {
   return count * kMovedQueryShare <= moved.size();
 }
 
+namespace {
+
 // Each moved vertex against the faces, each moved face against the unmoved vertices, each moved edge against the
 // edges (a pair of two moved edges from the one of lower index).
-void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& moved, std::size_t chunk_pairs,
-                      CandidateSink& sink, TraversalStats& stats) {
+template <class Reach>
+void query_moved_self_within(const BodyView& body, const std::vector<std::uint8_t>& moved, Reach reach,
+                             std::size_t chunk_pairs, CandidateSink& sink, TraversalStats& stats) {
   const Bvh& t = *body.bvh;
   const int id = body.body;
   const int* faces = t.ordered_faces().data();
   const int* edges = t.ordered_edges().data();
   CandidateSet out;
-  MovedQueries queries(t, t, moved, out, sink, chunk_pairs, stats);
+  MovedQueries<Reach> queries(t, t, moved, reach, out, sink, chunk_pairs, stats);
   queries.run(
       [&](int i, const std::vector<int>& face_hits) {
         const int v = t.owned_vertices()[i];
@@ -175,12 +186,13 @@ void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& mov
 
 // Each moved vertex of a against b's faces, each moved face of a against b's vertices, each moved edge of a against
 // b's edges.
-void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved,
-                      std::size_t chunk_pairs, CandidateSink& sink, TraversalStats& stats) {
+template <class Reach>
+void query_moved_pair_within(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved, Reach reach,
+                             std::size_t chunk_pairs, CandidateSink& sink, TraversalStats& stats) {
   const Bvh& ta = *a.bvh;
   const Bvh& tb = *b.bvh;
   CandidateSet out;
-  MovedQueries queries(ta, tb, moved, out, sink, chunk_pairs, stats);
+  MovedQueries<Reach> queries(ta, tb, moved, reach, out, sink, chunk_pairs, stats);
   queries.run(
       [&](int i, const std::vector<int>& face_hits) {
         for (const int p : face_hits) {
@@ -197,6 +209,28 @@ void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<st
           out.edge_edge.push_back({a.body, ta.owned_edges()[i], b.body, tb.owned_edges()[j]});
         }
       });
+}
+
+}  // namespace
+
+void query_moved_self(const BodyView& body, const std::vector<std::uint8_t>& moved,
+                      const std::atomic<double>* gap_bound, std::size_t chunk_pairs, CandidateSink& sink,
+                      TraversalStats& stats) {
+  if (gap_bound == nullptr) {
+    query_moved_self_within(body, moved, Touching{}, chunk_pairs, sink, stats);
+  } else {
+    query_moved_self_within(body, moved, WithinBound{gap_bound}, chunk_pairs, sink, stats);
+  }
+}
+
+void query_moved_pair(const BodyView& a, const BodyView& b, const std::vector<std::uint8_t>& moved,
+                      const std::atomic<double>* gap_bound, std::size_t chunk_pairs, CandidateSink& sink,
+                      TraversalStats& stats) {
+  if (gap_bound == nullptr) {
+    query_moved_pair_within(a, b, moved, Touching{}, chunk_pairs, sink, stats);
+  } else {
+    query_moved_pair_within(a, b, moved, WithinBound{gap_bound}, chunk_pairs, sink, stats);
+  }
 }
 
 }  // namespace clothcd::broadphase::detail

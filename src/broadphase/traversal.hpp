@@ -3,10 +3,13 @@
 /// Candidate pair search: descend two hierarchies (or one against itself) and test the owned primitives of overlapping
 /// leaves by their swept boxes, handing the candidates to a sink in chunks as they are found. Pairs sharing a vertex
 /// are skipped inside a body, and since every vertex and edge is owned by one triangle, no pair is produced twice and
-/// adjacent triangles are never listed as pairs.
+/// adjacent triangles are never listed as pairs. The search can instead list face pairs (SearchedPairs::FaceFace, for
+/// the intersecting faces of one state), and can take a gap bound that it reads as it goes (for the pairs within a
+/// distance and the minimum distance: branch and bound).
 /// Section 3.2.1 of Jin et al.: with sphere hierarchies the root spheres are tested first, the root AABBs are built and
 /// tested only when the spheres overlap, and only then does the search descend depth-first.
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -30,6 +33,16 @@ struct BodyView {
 /// this many moved (see TraversalSettings::moved_vertices).
 constexpr std::size_t kMovedQueryShare = 16;
 
+/// Which primitive pairs a search produces.
+enum class SearchedPairs {
+  /// Vertex-face and edge-edge pairs (CandidateSet::vertex_face and edge_edge), those sharing a vertex skipped inside
+  /// a body: the pairs of the contact queries.
+  VertexFaceEdgeEdge,
+  /// Face pairs (CandidateSet::face_face): every pair of faces whose boxes overlap, inside a body those sharing
+  /// vertices too (faces meeting at a vertex or an edge may intersect beyond it), never a face with itself.
+  FaceFace,
+};
+
 /// Search options.
 struct TraversalSettings {
   bool parallel = true;  ///< Split the search into tasks run by TBB (the same pairs; the chunks' order changes).
@@ -38,11 +51,25 @@ struct TraversalSettings {
   /// pairs of the unrestricted search that involve a moved vertex of that body are returned. With at most one vertex
   /// in kMovedQueryShare moved, the boxes of the moved primitives query the hierarchies (serially); with more, the
   /// descent skips the subtrees without a moved vertex. Must stay valid during the call; its size must be that body's
-  /// vertex count.
+  /// vertex count. Not with SearchedPairs::FaceFace (std::invalid_argument).
   const std::vector<std::uint8_t>* moved_vertices = nullptr;
   /// A task passes its candidates on to the CandidateSink once it holds this many (>= 1; a chunk may exceed it by the
   /// pairs of one leaf pair).
   std::size_t chunk_pairs = 1024;
+  /// The pairs to produce.
+  SearchedPairs pairs = SearchedPairs::VertexFaceEdgeEdge;
+  /// Optional gap bound, for branch and bound (the minimum distance: a sink lowers it to the smallest distance found
+  /// so far, on boxes refitted without inflation) and for pairs within a distance. When set, every overlap test of
+  /// the search (node volumes, the root double box, primitive boxes against leaf boxes and against each other) passes
+  /// for volumes within its current value of each other along every axis (spheres: with their radius grown by
+  /// sqrt(3) times it, which holds every point that close), so the search produces the pairs whose primitive boxes
+  /// are within it along every axis (each per-axis difference of their bounds, rounded, at most the value). The value
+  /// is read (memory_order_relaxed) at each node test and for each primitive's tests, so a sink (or any thread) that
+  /// lowers it while the search runs prunes the rest of the search, and the descent visits the nearer of two child
+  /// pairs first. It must be >= 0 (+infinity: every pair; std::invalid_argument for a negative or NaN value at the
+  /// start) and may only be lowered during the search: every pair within its final value is produced, and pairs within
+  /// an earlier value may be too. 0 produces the pairs of the search without a bound. Must stay valid during the call.
+  const std::atomic<double>* gap_bound = nullptr;
 };
 
 /// Receives the candidates of a search chunk by chunk, so that the candidates of a step are never all held at once
@@ -80,7 +107,9 @@ struct TraversalStats {
 /// Hands to `sink`, in chunks (TraversalSettings::chunk_pairs) as the search finds them, every vertex-face pair (v, f)
 /// with v not in f and every edge-edge pair sharing no vertex, within `body`, whose swept boxes overlap: each pair
 /// once, in no particular order (see sort_candidates), and no storage proportional to them. Node volumes: Aabb, or
-/// Sphere (descended on its node boxes, Bvh::boxes()); throws std::invalid_argument for Obb, and for chunk_pairs 0.
+/// Sphere (descended on its node boxes, Bvh::boxes()); throws std::invalid_argument for Obb, for chunk_pairs 0, and
+/// for moved_vertices with SearchedPairs::FaceFace. With SearchedPairs::FaceFace: every pair of faces whose boxes
+/// overlap instead (face_a < face_b). With a gap_bound: the pairs within it instead of overlapping.
 /// With `parallel`, one body's search is split into node-pair tasks that every thread takes from.
 void find_self_candidates(const BodyView& body, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats = nullptr);
@@ -88,7 +117,9 @@ void find_self_candidates(const BodyView& body, const TraversalSettings& setting
 /// Hands to `sink`, in chunks as find_self_candidates does, every pair between body `a` and body `b` (a.body < b.body)
 /// whose swept boxes overlap: vertices of a vs faces of b, vertices of b vs faces of a, edges of a vs edges of b.
 /// Volume pairs: Aabb-Aabb, Sphere-Sphere (root double box logic; below the root, node spheres first and node boxes
-/// when the spheres overlap), Aabb-Obb. Throws std::invalid_argument for any other combination, and for chunk_pairs 0.
+/// when the spheres overlap), Aabb-Obb. Throws std::invalid_argument for any other combination, and as
+/// find_self_candidates does. With SearchedPairs::FaceFace: every face of a against every face of b whose boxes
+/// overlap instead; with a gap_bound, those within it.
 void find_pair_candidates(const BodyView& a, const BodyView& b, const TraversalSettings& settings, CandidateSink& sink,
                           TraversalStats* stats = nullptr);
 

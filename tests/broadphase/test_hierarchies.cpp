@@ -45,16 +45,6 @@ void check_same(const CandidateSet& found, const CandidateSet& reference) {
   CHECK(found.edge_edge == reference.edge_edge);
 }
 
-TriangleMesh draped_cloth(int n) {
-  TriangleMesh cloth = make_grid(n, n, 2.4, 2.4);
-  // Bend the grid over the obstacle so that it folds near itself and touches the obstacle.
-  for (Eigen::Index v = 0; v < cloth.vertex_count(); ++v) {
-    const double x = cloth.vertices(v, 0), z = cloth.vertices(v, 2);
-    cloth.vertices(v, 1) = 1.02 - 0.5 * (x * x + z * z);
-  }
-  return cloth;
-}
-
 }  // namespace
 
 TEST_CASE("hierarchies match brute force on a cloth draped over obstacles", "[broadphase][brute-force]") {
