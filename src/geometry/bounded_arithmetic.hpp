@@ -47,7 +47,9 @@ struct BoundedVector {
 };
 
 /// A double taken as it is (no rounding).
-[[nodiscard]] inline Bounded<0> exact(double x) { return {x, std::abs(x)}; }
+[[nodiscard]] inline Bounded<0> exact(double x) {
+  return {x, std::abs(x)};
+}
 
 /// The rounded difference a - b of two points, one rounding per component.
 [[nodiscard]] inline BoundedVector<1> difference(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

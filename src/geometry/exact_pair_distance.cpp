@@ -44,7 +44,9 @@ ExactPairDistance first_minimum(const std::vector<Candidate>& candidates) {
   return {best->squared_distance, best->type};
 }
 
-DistanceType offset(DistanceType first, int k) { return static_cast<DistanceType>(static_cast<int>(first) + k); }
+DistanceType offset(DistanceType first, int k) {
+  return static_cast<DistanceType>(static_cast<int>(first) + k);
+}
 
 }  // namespace
 
@@ -55,7 +57,8 @@ ExactPairDistance exact_point_triangle_distance(const Eigen::Vector3d& p_in, con
   std::vector<Candidate> candidates;
   for (int k = 0; k < 3; ++k) candidates.push_back({dot(p - t[k], p - t[k]), offset(DistanceType::PointVertex0, k)});
   for (int k = 0; k < 3; ++k) {
-    if (const auto d2 = inside_segment(p, t[k], t[(k + 1) % 3])) candidates.push_back({*d2, offset(DistanceType::PointEdge0, k)});
+    if (const auto d2 = inside_segment(p, t[k], t[(k + 1) % 3]))
+      candidates.push_back({*d2, offset(DistanceType::PointEdge0, k)});
   }
   // The projection onto the plane, when the triangle has an area: barycentric weights by Cramer's rule.
   const Vector e1 = t[1] - t[0], e2 = t[2] - t[0], r = p - t[0];
@@ -80,9 +83,11 @@ ExactPairDistance exact_segment_segment_distance(const Eigen::Vector3d& a0, cons
     for (int j = 0; j < 2; ++j)
       candidates.push_back({dot(a[i] - b[j], a[i] - b[j]), offset(DistanceType::VertexA0VertexB0, 2 * i + j)});
   for (int i = 0; i < 2; ++i)
-    if (const auto d2 = inside_segment(a[i], b[0], b[1])) candidates.push_back({*d2, offset(DistanceType::VertexA0Edge, i)});
+    if (const auto d2 = inside_segment(a[i], b[0], b[1]))
+      candidates.push_back({*d2, offset(DistanceType::VertexA0Edge, i)});
   for (int j = 0; j < 2; ++j)
-    if (const auto d2 = inside_segment(b[j], a[0], a[1])) candidates.push_back({*d2, offset(DistanceType::EdgeVertexB0, j)});
+    if (const auto d2 = inside_segment(b[j], a[0], a[1]))
+      candidates.push_back({*d2, offset(DistanceType::EdgeVertexB0, j)});
   // The common perpendicular of the lines, when they are not parallel: a0 + s da and b0 + u db with
   // (a0 + s da - b0 - u db) . da = 0 and . db = 0 (Cramer's rule).
   const Vector da = a[1] - a[0], db = b[1] - b[0], r = a[0] - b[0];

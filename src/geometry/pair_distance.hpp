@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// Exact distances of the primitive pairs of one state: a point against a closed triangle (vertex-face) and two closed
-/// segments (edge-edge), on the double coordinates taken as real numbers. Whether a pair is within a distance is decided
-/// exactly; the reported distance is within kDistanceRelativeError of the exact one, and the closest feature
+/// segments (edge-edge), on the double coordinates taken as real numbers. Whether a pair is within a distance is
+/// decided exactly; the reported distance is within kDistanceRelativeError of the exact one, and the closest feature
 /// (DistanceType) is the exact one.
 ///
 /// A floating-point filter with certified error bounds (geometry/bounded_arithmetic.hpp) decides almost every pair;

@@ -35,7 +35,9 @@ using Points = std::array<const Eigen::Vector3d*, 4>;
 }
 
 /// True when the rounded difference a - b exceeds d: then the exact one does (rounding is monotonic and d is a double).
-[[nodiscard]] inline bool gap_exceeds(double a, double b, double d) { return a - b > d; }
+[[nodiscard]] inline bool gap_exceeds(double a, double b, double d) {
+  return a - b > d;
+}
 
 /// The certain sign of d^2 den - num: +1 when num / den < d^2 (den > 0), -1 when it is above, 0 when uncertain.
 template <int KN, int KD>

@@ -30,7 +30,9 @@ bool box_apart(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen:
   return false;
 }
 
-DistanceType offset(DistanceType first, int k) { return static_cast<DistanceType>(static_cast<int>(first) + k); }
+DistanceType offset(DistanceType first, int k) {
+  return static_cast<DistanceType>(static_cast<int>(first) + k);
+}
 
 // Barycentric weights (w1, w2) of t_k + s (t_{k+1} - t_k), s in (0, 1] (a parameter strictly inside may round up to
 // 1, hence the callers' clamp).
@@ -55,7 +57,7 @@ Outcome point_triangle_filter(const Eigen::Vector3d& p, const Eigen::Vector3d& t
   if (plane_within < 0) return Outcome::Apart;
 
   const std::array<BoundedVector<4>, 3> outward{cross(edge[0], to_p[0]), cross(edge[1], to_p[1]),
-                                                 cross(edge[2], to_p[2])};
+                                                cross(edge[2], to_p[2])};
   std::array<int, 3> side;  // +1: p strictly on the triangle's side of edge k
   for (int k = 0; k < 3; ++k) side[k] = sign(dot(n, outward[k]));
   if (side[0] > 0 && side[1] > 0 && side[2] > 0) {
@@ -110,7 +112,8 @@ Outcome point_triangle_filter(const Eigen::Vector3d& p, const Eigen::Vector3d& t
 bool point_triangle_within(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
                            const Eigen::Vector3d& t2, double d, PairDistance& out) {
   return filter::decide_within(
-      d, out, [&](double limit, bool limited, PairDistance& record) {
+      d, out,
+      [&](double limit, bool limited, PairDistance& record) {
         return point_triangle_filter(p, t0, t1, t2, limit, limited, record);
       },
       [&] { return rational_point_triangle_distance(p, t0, t1, t2); });

@@ -33,7 +33,9 @@ bool box_apart(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen
   return false;
 }
 
-DistanceType offset(DistanceType first, int k) { return static_cast<DistanceType>(static_cast<int>(first) + k); }
+DistanceType offset(DistanceType first, int k) {
+  return static_cast<DistanceType>(static_cast<int>(first) + k);
+}
 
 // The cell's squared distance num / den against d, then the record from `fill` (parameters, direction; a parameter
 // strictly inside (0, 1) may round to just above 1, hence the clamps).
@@ -64,8 +66,8 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
   if (lines_within < 0) return Outcome::Apart;
 
   // x[i][j] = a_i - b_j.
-  const std::array<std::array<BoundedVector<1>, 2>, 2> x{{{difference(a0, b0), difference(a0, b1)},
-                                                         {difference(a1, b0), difference(a1, b1)}}};
+  const std::array<std::array<BoundedVector<1>, 2>, 2> x{
+      {{difference(a0, b0), difference(a0, b1)}, {difference(a1, b0), difference(a1, b1)}}};
   const Bounded<11> s0 = dot(cross(w, db), n), s1 = dot(cross(x[1][0], db), n);
   const Bounded<11> u0 = dot(cross(w, da), n), u1 = dot(cross(x[0][1], da), n);
   const std::array<int, 2> s_inside{sign(s0), sign(s1)}, u_inside{sign(u0), sign(u1)};
@@ -125,14 +127,15 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
 bool segment_segment_within(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
                             const Eigen::Vector3d& b1, double d, PairDistance& out) {
   return filter::decide_within(
-      d, out, [&](double limit, bool limited, PairDistance& record) {
+      d, out,
+      [&](double limit, bool limited, PairDistance& record) {
         return segment_segment_filter(a0, a1, b0, b1, limit, limited, record);
       },
       [&] { return rational_segment_segment_distance(a0, a1, b0, b1); });
 }
 
-PairDistance segment_segment_distance(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
-                                      const Eigen::Vector3d& b0, const Eigen::Vector3d& b1) {
+PairDistance segment_segment_distance(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
+                                      const Eigen::Vector3d& b1) {
   return filter::decide_distance(
       [&](double limit, bool limited, PairDistance& record) {
         return segment_segment_filter(a0, a1, b0, b1, limit, limited, record);

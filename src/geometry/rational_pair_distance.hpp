@@ -14,7 +14,7 @@ namespace clothcd::geometry {
 
 /// A pair's distance record with its exact squared distance.
 struct RationalDistance {
-  PairDistance record;          ///< Distance (rounded from the exact square), parameters, direction, exact type.
+  PairDistance record;         ///< Distance (rounded from the exact square), parameters, direction, exact type.
   mpq_class squared_distance;  ///< The exact squared distance.
 };
 

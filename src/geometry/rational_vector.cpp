@@ -28,21 +28,33 @@ mpq_class times_power_of_two(const mpq_class& x, long e) {
 
 }  // namespace
 
-Vector from_double(const Eigen::Vector3d& x) { return {mpq_class(x.x()), mpq_class(x.y()), mpq_class(x.z())}; }
+Vector from_double(const Eigen::Vector3d& x) {
+  return {mpq_class(x.x()), mpq_class(x.y()), mpq_class(x.z())};
+}
 
-Vector operator-(const Vector& a, const Vector& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vector operator-(const Vector& a, const Vector& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 
-Vector operator+(const Vector& a, const Vector& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vector operator+(const Vector& a, const Vector& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
 
-Vector operator*(const mpq_class& s, const Vector& a) { return {s * a[0], s * a[1], s * a[2]}; }
+Vector operator*(const mpq_class& s, const Vector& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
 
-mpq_class dot(const Vector& a, const Vector& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+mpq_class dot(const Vector& a, const Vector& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 Vector cross(const Vector& a, const Vector& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-bool is_zero(const Vector& a) { return sgn(a[0]) == 0 && sgn(a[1]) == 0 && sgn(a[2]) == 0; }
+bool is_zero(const Vector& a) {
+  return sgn(a[0]) == 0 && sgn(a[1]) == 0 && sgn(a[2]) == 0;
+}
 
 double square_root(const mpq_class& x) {
   if (sgn(x) <= 0) return 0.0;

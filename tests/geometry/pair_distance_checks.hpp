@@ -1,6 +1,7 @@
 #pragma once
-// Checks of the pair distances (geometry/pair_distance.hpp) against the exact reference (geometry/exact_pair_distance.hpp):
-// membership, distance, type, parameters and direction of one pair at one asked distance.
+// Checks of the pair distances (geometry/pair_distance.hpp) against the exact reference
+// (geometry/exact_pair_distance.hpp): membership, distance, type, parameters and direction of one pair at one asked
+// distance.
 
 #include <catch2/catch.hpp>
 
@@ -31,7 +32,8 @@ inline bool distance_accurate(double distance, const mpq_class& squared) {
   const mpq_class r(distance), lo(1.0 - kDistanceRelativeError), hi(1.0 + kDistanceRelativeError);
   if (r * r >= lo * lo * squared && r * r <= hi * hi * squared) return true;
   const mpq_class smallest(0x1p-1074), normal(0x1p-1022);
-  return squared < normal * normal && (r - smallest) * (r - smallest) <= squared && squared <= (r + smallest) * (r + smallest);
+  return squared < normal * normal && (r - smallest) * (r - smallest) <= squared &&
+         squared <= (r + smallest) * (r + smallest);
 }
 
 /// The record's closest points (from its parameters) lie `distance` apart along `direction`, up to a tolerance

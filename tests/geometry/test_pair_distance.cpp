@@ -46,7 +46,9 @@ Points oriented(const Points& x, int orientation) {
   Points y;
   for (int i = 0; i < 4; ++i) {
     const Vector3d& v = x[i];
-    Vector3d w = orientation % 3 == 0 ? v : orientation % 3 == 1 ? Vector3d(v.y(), v.z(), v.x()) : Vector3d(v.z(), v.x(), v.y());
+    Vector3d w = orientation % 3 == 0   ? v
+                 : orientation % 3 == 1 ? Vector3d(v.y(), v.z(), v.x())
+                                        : Vector3d(v.z(), v.x(), v.y());
     if (orientation / 3 == 1) w = Vector3d(-w.x(), w.y(), -w.z());
     y[i] = w;
   }
@@ -96,9 +98,9 @@ TEST_CASE("pair distance: segments exactly d apart are not within d", "[pair-dis
 TEST_CASE("pair distance: touching pairs have distance 0 and the exact feature", "[pair-distance]") {
   const Vector3d t0(0, 0, 0), t1(2, 0, 0), t2(0, 2, 0);
   const std::pair<Vector3d, DistanceType> touches[] = {
-      {Vector3d(0.5, 0.5, 0), DistanceType::PointFace},  {Vector3d(1, 0, 0), DistanceType::PointEdge0},
-      {Vector3d(1, 1, 0), DistanceType::PointEdge1},     {Vector3d(0, 1, 0), DistanceType::PointEdge2},
-      {Vector3d(0, 0, 0), DistanceType::PointVertex0},   {Vector3d(2, 0, 0), DistanceType::PointVertex1},
+      {Vector3d(0.5, 0.5, 0), DistanceType::PointFace}, {Vector3d(1, 0, 0), DistanceType::PointEdge0},
+      {Vector3d(1, 1, 0), DistanceType::PointEdge1},    {Vector3d(0, 1, 0), DistanceType::PointEdge2},
+      {Vector3d(0, 0, 0), DistanceType::PointVertex0},  {Vector3d(2, 0, 0), DistanceType::PointVertex1},
       {Vector3d(0, 2, 0), DistanceType::PointVertex2}};
   for (int o = 0; o < 6; ++o) {
     for (const auto& [p, type] : touches) {
@@ -132,8 +134,8 @@ TEST_CASE("pair distance: points one ulp from the boundaries between Voronoi reg
   // On the planes between regions: face | edge 0 (y = 0), face | edge 2 (x = 0), face | edge 1 (x + y = 1), edge 0 |
   // vertex 1 (x = 1), edge 0 | vertex 0 (x = 0, y < 0), edge 1 | vertex 1 (y = x - 1), and in the plane itself.
   const Vector3d boundary_points[] = {Vector3d(0.375, 0, 0.25), Vector3d(0, 0.625, 0.25), Vector3d(0.25, 0.75, 0.5),
-                                      Vector3d(1, -0.5, 0.25),  Vector3d(0, -0.5, 0.25), Vector3d(1.5, 0.5, 0.25),
-                                      Vector3d(0.375, 0, 0),    Vector3d(1, -0.5, 0),    Vector3d(0.25, 0.75, 0)};
+                                      Vector3d(1, -0.5, 0.25),  Vector3d(0, -0.5, 0.25),  Vector3d(1.5, 0.5, 0.25),
+                                      Vector3d(0.375, 0, 0),    Vector3d(1, -0.5, 0),     Vector3d(0.25, 0.75, 0)};
   for (int o = 0; o < 6; ++o) {
     for (const Vector3d& p : boundary_points) {
       for (const Points& x : ulp_neighbours(oriented({p, t0, t1, t2}, o), 0)) {
@@ -163,10 +165,10 @@ TEST_CASE("pair distance: points one ulp from the boundaries between Voronoi reg
 
 TEST_CASE("pair distance: zero-area triangles and coincident vertices", "[pair-distance]") {
   const Vector3d a(0, 0, 0), b(1, 1, 0), c(2, 2, 0);  // collinear, b between a and c
-  const Vector3d probes[] = {Vector3d(0.5, 0.5, 1), Vector3d(1.5, 1.5, 0), Vector3d(1, 1, 0), Vector3d(1, 1, 2),
-                             Vector3d(-1, 0, 0),   Vector3d(3, 3, 3),     Vector3d(0.25, 0.25, 0), Vector3d(2, 2, 0)};
-  const std::array<Vector3d, 3> triangles[] = {{a, b, c}, {b, a, c}, {a, c, b}, {c, a, b}, {a, a, c}, {a, c, c},
-                                               {b, b, b}, {a, a, b}};
+  const Vector3d probes[] = {Vector3d(0.5, 0.5, 1), Vector3d(1.5, 1.5, 0), Vector3d(1, 1, 0),       Vector3d(1, 1, 2),
+                             Vector3d(-1, 0, 0),    Vector3d(3, 3, 3),     Vector3d(0.25, 0.25, 0), Vector3d(2, 2, 0)};
+  const std::array<Vector3d, 3> triangles[] = {{a, b, c}, {b, a, c}, {a, c, b}, {c, a, b},
+                                               {a, a, c}, {a, c, c}, {b, b, b}, {a, a, b}};
   for (int o = 0; o < 6; ++o) {
     for (const auto& t : triangles) {
       for (const Vector3d& p : probes) {
@@ -186,18 +188,18 @@ TEST_CASE("pair distance: zero-area triangles and coincident vertices", "[pair-d
 TEST_CASE("pair distance: parallel, collinear and zero-length segments", "[pair-distance]") {
   const Vector3d a0(0, 0, 0), a1(2, 0, 0);
   const Points pairs[] = {
-      {a0, a1, Vector3d(1, 1, 0), Vector3d(3, 1, 0)},      // parallel, overlapping
-      {a0, a1, Vector3d(3, 1, 0), Vector3d(1, 1, 0)},      // parallel, reversed
-      {a0, a1, Vector3d(3, 1, 0), Vector3d(5, 1, 0)},      // parallel, apart along the line
-      {a0, a1, Vector3d(2, 1, 0), Vector3d(4, 1, 0)},      // parallel, ends aligned
-      {a0, a1, Vector3d(1, 0, 0), Vector3d(3, 0, 0)},      // collinear, overlapping
-      {a0, a1, Vector3d(3, 0, 0), Vector3d(4, 0, 0)},      // collinear, apart
-      {a0, a1, Vector3d(-1, 0, 0), Vector3d(3, 0, 0)},     // collinear, b holds a
-      {a0, a0, Vector3d(1, 1, 0), Vector3d(3, 1, 0)},      // a is a point
-      {a0, a1, Vector3d(1, 1, 0), Vector3d(1, 1, 0)},      // b is a point over a
-      {a0, a0, Vector3d(1, 1, 0), Vector3d(1, 1, 0)},      // both points
-      {a0, a0, a0, a0},                                    // one point
-      {a0, a1, Vector3d(1, 0, 0), Vector3d(1, 0, 0)},      // b is a point on a
+      {a0, a1, Vector3d(1, 1, 0), Vector3d(3, 1, 0)},   // parallel, overlapping
+      {a0, a1, Vector3d(3, 1, 0), Vector3d(1, 1, 0)},   // parallel, reversed
+      {a0, a1, Vector3d(3, 1, 0), Vector3d(5, 1, 0)},   // parallel, apart along the line
+      {a0, a1, Vector3d(2, 1, 0), Vector3d(4, 1, 0)},   // parallel, ends aligned
+      {a0, a1, Vector3d(1, 0, 0), Vector3d(3, 0, 0)},   // collinear, overlapping
+      {a0, a1, Vector3d(3, 0, 0), Vector3d(4, 0, 0)},   // collinear, apart
+      {a0, a1, Vector3d(-1, 0, 0), Vector3d(3, 0, 0)},  // collinear, b holds a
+      {a0, a0, Vector3d(1, 1, 0), Vector3d(3, 1, 0)},   // a is a point
+      {a0, a1, Vector3d(1, 1, 0), Vector3d(1, 1, 0)},   // b is a point over a
+      {a0, a0, Vector3d(1, 1, 0), Vector3d(1, 1, 0)},   // both points
+      {a0, a0, a0, a0},                                 // one point
+      {a0, a1, Vector3d(1, 0, 0), Vector3d(1, 0, 0)},   // b is a point on a
   };
   for (int o = 0; o < 6; ++o) {
     for (const Points& y : pairs) {
