@@ -113,11 +113,28 @@ template <int K>
   return 0;
 }
 
-/// True when x.value is within relative error 2^-42 of P (and P > 0): then a quotient of two such values, rounded,
-/// has a correctly rounded square root within kDistanceRelativeError (2^-40) of the exact one.
+/// An upper bound of the Euclidean norm of x.value - V (the sum of the components' bounds).
 template <int K>
-[[nodiscard]] inline bool relatively_accurate(const Bounded<K>& x) {
-  return error_bound(x) <= 0x1p-42 * x.value;
+[[nodiscard]] inline double error_bound(const BoundedVector<K>& x) {
+  const Bounded<K> cx{x.value.x(), x.magnitude.x()}, cy{x.value.y(), x.magnitude.y()}, cz{x.value.z(), x.magnitude.z()};
+  return (error_bound(cx) + error_bound(cy)) + error_bound(cz);
+}
+
+/// True when |x.value| is within relative error 2^-Bits of |P| (and P != 0).
+template <int Bits, int K>
+[[nodiscard]] inline bool accurate_length(const Bounded<K>& x) {
+  constexpr double kTolerance = 1.0 / static_cast<double>(1ull << Bits);
+  return error_bound(x) <= kTolerance * std::abs(x.value);
+}
+
+/// True when the length of x.value is within relative error 2^-Bits of that of V (and V != 0), given its squared
+/// length as computed (within 3 u of the exact square of x.value's length; the factor 1/2 in the test covers the
+/// roundings of both of its sides).
+template <int Bits, int K>
+[[nodiscard]] inline bool accurate_length(const BoundedVector<K>& x, double squared_length) {
+  constexpr double kTolerance = 1.0 / static_cast<double>(1ull << Bits);
+  const double error = error_bound(x);
+  return error * error <= 0.5 * kTolerance * kTolerance * squared_length;
 }
 
 }  // namespace clothcd::geometry::bounded

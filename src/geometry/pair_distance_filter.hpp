@@ -53,15 +53,17 @@ template <int KN>
   return bounded::sign(dd * dd - num);
 }
 
-/// Sets `distance` to sqrt(num / den) and returns true when both are accurate enough for kDistanceRelativeError: each
-/// within 2^-42 relative, the rounded quotient is within 2^-41 + 2^-53 < 2^-40.9 of the exact num / den, and its
-/// correctly rounded square root within 2^-41.9 + 2^-53 < 2^-40 of the exact distance.
-template <int KN, int KD>
-[[nodiscard]] bool accurate_distance(const bounded::Bounded<KN>& num, const bounded::Bounded<KD>& den,
-                                     double& distance) {
-  if (!bounded::relatively_accurate(num) || !bounded::relatively_accurate(den)) return false;
-  distance = std::sqrt(num.value / den.value);
-  return true;
+/// Bits of relative accuracy accurate_length must certify for the length whose square is the numerator of a squared
+/// distance, and for the denominator's.
+inline constexpr int kNumeratorBits = 41;
+inline constexpr int kDenominatorBits = 42;
+
+/// The distance sqrt(num / den) from squared lengths num and den computed from vectors (or scalars) whose lengths are
+/// within 2^-41 and 2^-42 of the exact ones (accurate_length): the computed squares are within 2 (2^-41) + 4 u and
+/// 2 (2^-42) + 4 u of the exact squares, the rounded quotient within 2^-40 + 2^-41 + 9 u, and its correctly rounded
+/// square root within 2^-41 + 2^-42 + 5 u < kDistanceRelativeError (2^-40) of the exact distance.
+[[nodiscard]] inline double distance_from_squares(double num, double den) {
+  return std::sqrt(num / den);
 }
 
 /// within(): the filter (`Filter(double d, bool limited, PairDistance&) -> Outcome`), and the exact tier

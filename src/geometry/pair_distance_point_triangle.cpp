@@ -62,7 +62,10 @@ Outcome point_triangle_filter(const Eigen::Vector3d& p, const Eigen::Vector3d& t
   for (int k = 0; k < 3; ++k) side[k] = sign(dot(n, outward[k]));
   if (side[0] > 0 && side[1] > 0 && side[2] > 0) {
     if (limited && plane_within == 0) return Outcome::Undecided;
-    if (!filter::accurate_distance(height * height, area_squared, out.distance)) return Outcome::Undecided;
+    if (!bounded::accurate_length<filter::kNumeratorBits>(height) ||
+        !bounded::accurate_length<filter::kDenominatorBits>(n, area_squared.value))
+      return Outcome::Undecided;
+    out.distance = filter::distance_from_squares(height.value * height.value, area_squared.value);
     const double inverse_area = 1.0 / area_squared.value;
     out.parameters = {dot(n, outward[2]).value * inverse_area, dot(n, outward[0]).value * inverse_area};
     out.direction = (height.value > 0.0 ? n.value : Eigen::Vector3d(-n.value)).normalized();
@@ -83,7 +86,8 @@ Outcome point_triangle_filter(const Eigen::Vector3d& p, const Eigen::Vector3d& t
         if (within < 0) return Outcome::Apart;
         if (within == 0) return Outcome::Undecided;
       }
-      if (!filter::accurate_distance(squared, bounded::exact(1.0), out.distance)) return Outcome::Undecided;
+      if (!bounded::accurate_length<filter::kNumeratorBits>(to_p[k], squared.value)) return Outcome::Undecided;
+      out.distance = filter::distance_from_squares(squared.value, 1.0);
       out.parameters = {k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
       out.direction = to_p[k].value.normalized();
       out.type = offset(DistanceType::PointVertex0, k);
@@ -97,7 +101,10 @@ Outcome point_triangle_filter(const Eigen::Vector3d& p, const Eigen::Vector3d& t
         if (within < 0) return Outcome::Apart;
         if (within == 0) return Outcome::Undecided;
       }
-      if (!filter::accurate_distance(squared_area, length_squared, out.distance)) return Outcome::Undecided;
+      if (!bounded::accurate_length<filter::kNumeratorBits>(outward[k], squared_area.value) ||
+          !bounded::accurate_length<filter::kDenominatorBits>(edge[k], length_squared.value))
+        return Outcome::Undecided;
+      out.distance = filter::distance_from_squares(squared_area.value, length_squared.value);
       out.parameters = edge_weights(k, std::min(dot(edge[k], to_p[k]).value / length_squared.value, 1.0));
       out.direction = outward[k].value.cross(edge[k].value).normalized();
       out.type = offset(DistanceType::PointEdge0, k);

@@ -37,17 +37,19 @@ DistanceType offset(DistanceType first, int k) {
   return static_cast<DistanceType>(static_cast<int>(first) + k);
 }
 
-// The cell's squared distance num / den against d, then the record from `fill` (parameters, direction; a parameter
-// strictly inside (0, 1) may round to just above 1, hence the clamps).
+// The cell's squared distance num / den against d, then the record: the distance when `accurate` (the lengths whose
+// squares num and den are were certified), and the rest from `fill` (parameters, direction; a parameter strictly inside
+// (0, 1) may round to just above 1, hence the clamps).
 template <int KN, int KD, typename Fill>
-Outcome finish(const Bounded<KN>& num, const Bounded<KD>& den, double d, bool limited, DistanceType type,
+Outcome finish(const Bounded<KN>& num, const Bounded<KD>& den, double d, bool limited, bool accurate, DistanceType type,
                PairDistance& out, Fill fill) {
   if (limited) {
     const int within = filter::within_sign(num, den, d);
     if (within < 0) return Outcome::Apart;
     if (within == 0) return Outcome::Undecided;
   }
-  if (!filter::accurate_distance(num, den, out.distance)) return Outcome::Undecided;
+  if (!accurate) return Outcome::Undecided;
+  out.distance = filter::distance_from_squares(num.value, den.value);
   fill();
   out.type = type;
   return Outcome::Found;
@@ -73,7 +75,9 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
   const std::array<int, 2> s_inside{sign(s0), sign(s1)}, u_inside{sign(u0), sign(u1)};
   if (s_inside[0] > 0 && s_inside[1] > 0 && u_inside[0] > 0 && u_inside[1] > 0) {
     if (limited && lines_within == 0) return Outcome::Undecided;
-    return finish(height * height, cross_squared, d, false, DistanceType::EdgeEdge, out, [&] {
+    const bool accurate = bounded::accurate_length<filter::kNumeratorBits>(height) &&
+                          bounded::accurate_length<filter::kDenominatorBits>(n, cross_squared.value);
+    return finish(height * height, cross_squared, d, false, accurate, DistanceType::EdgeEdge, out, [&] {
       out.parameters = {std::min(s0.value / cross_squared.value, 1.0), std::min(u0.value / cross_squared.value, 1.0)};
       out.direction = (height.value > 0.0 ? Eigen::Vector3d(-n.value) : n.value).normalized();
     });
@@ -89,7 +93,9 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
       if (along_a[i][j] == (i == 0 ? 1 : -1) && along_b[i][j] == (j == 0 ? -1 : 1)) {
-        return finish(dot(x[i][j], x[i][j]), bounded::exact(1.0), d, limited,
+        const Bounded<5> squared = dot(x[i][j], x[i][j]);
+        return finish(squared, bounded::exact(1.0), d, limited,
+                      bounded::accurate_length<filter::kNumeratorBits>(x[i][j], squared.value),
                       offset(DistanceType::VertexA0VertexB0, 2 * i + j), out, [&] {
                         out.parameters = {static_cast<double>(i), static_cast<double>(j)};
                         out.direction = x[i][j].value.normalized();
@@ -101,22 +107,30 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
   for (int i = 0; i < 2; ++i) {
     if (along_b[i][0] > 0 && along_b[i][1] < 0 && s_inside[i] < 0) {
       const BoundedVector<4> c = cross(db, x[i][0]);
+      const Bounded<11> squared_area = dot(c, c);
       const Bounded<5> length_squared = dot(db, db);
-      return finish(dot(c, c), length_squared, d, limited, offset(DistanceType::VertexA0Edge, i), out, [&] {
-        out.parameters = {static_cast<double>(i), std::min(dot(db, x[i][0]).value / length_squared.value, 1.0)};
-        out.direction = c.value.cross(db.value).normalized();
-      });
+      const bool accurate = bounded::accurate_length<filter::kNumeratorBits>(c, squared_area.value) &&
+                            bounded::accurate_length<filter::kDenominatorBits>(db, length_squared.value);
+      return finish(
+          squared_area, length_squared, d, limited, accurate, offset(DistanceType::VertexA0Edge, i), out, [&] {
+            out.parameters = {static_cast<double>(i), std::min(dot(db, x[i][0]).value / length_squared.value, 1.0)};
+            out.direction = c.value.cross(db.value).normalized();
+          });
     }
   }
   // Side u = j: b_j projects strictly inside a, and U_j < 0.
   for (int j = 0; j < 2; ++j) {
     if (along_a[0][j] < 0 && along_a[1][j] > 0 && u_inside[j] < 0) {
       const BoundedVector<4> c = cross(da, x[0][j]);
+      const Bounded<11> squared_area = dot(c, c);
       const Bounded<5> length_squared = dot(da, da);
-      return finish(dot(c, c), length_squared, d, limited, offset(DistanceType::EdgeVertexB0, j), out, [&] {
-        out.parameters = {std::min(-dot(da, x[0][j]).value / length_squared.value, 1.0), static_cast<double>(j)};
-        out.direction = c.value.cross(da.value).normalized();
-      });
+      const bool accurate = bounded::accurate_length<filter::kNumeratorBits>(c, squared_area.value) &&
+                            bounded::accurate_length<filter::kDenominatorBits>(da, length_squared.value);
+      return finish(
+          squared_area, length_squared, d, limited, accurate, offset(DistanceType::EdgeVertexB0, j), out, [&] {
+            out.parameters = {std::min(-dot(da, x[0][j]).value / length_squared.value, 1.0), static_cast<double>(j)};
+            out.direction = c.value.cross(da.value).normalized();
+          });
     }
   }
   return Outcome::Undecided;
