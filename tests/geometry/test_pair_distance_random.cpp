@@ -1,7 +1,7 @@
 // The exact pair distances (geometry/pair_distance.hpp) against the GMP reference on seeded random pairs at scales
 // from 1e-6 to 1e6, generic and degenerate (repeated, collinear, coplanar points, a point on or near the other
-// primitive, parallel and nearly parallel segments), each asked at its own distance rounded, one unit in the last place
-// below and above it, and at distances around the primitives' size.
+// primitive, parallel and nearly parallel segments, nearly collinear triangles), each asked at its own distance
+// rounded, one unit in the last place below and above it, and at distances around the primitives' size.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -55,6 +55,12 @@ struct RandomPairs {
       case 9:  // nearly parallel
         x[3] = x[2] + (x[1] - x[0]) + 1e-3 * x[3];
         break;
+      case 10:  // closer to parallel
+        x[3] = x[2] + (x[1] - x[0]) + 1e-6 * x[3];
+        break;
+      case 11:  // nearly collinear
+        x[3] = x[1] + 0.375 * (x[2] - x[1]) + 1e-6 * x[3];
+        break;
       default:
         break;
     }
@@ -68,7 +74,7 @@ void run(bool vertex_face, std::uint64_t seed, int count) {
   int within = 0;
   for (int i = 0; i < count; ++i) {
     const double scale = std::pow(10.0, -6 + 3 * (i % 5));
-    const Points x = random.four(i % 10, scale);
+    const Points x = random.four(i % 12, scale);
     const double distance =
         clothcd::geometry::rational::square_root(clothcd::test::reference(vertex_face, x).squared_distance);
     for (double d :
