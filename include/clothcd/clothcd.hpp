@@ -24,6 +24,7 @@
 #include "clothcd/detection/proximity.hpp"
 #include "clothcd/geometry/bounding_volumes.hpp"
 #include "clothcd/geometry/convex_hull.hpp"
+#include "clothcd/geometry/distance_type.hpp"
 #include "clothcd/geometry/hausdorff.hpp"
 #include "clothcd/geometry/mesh_volume.hpp"
 #include "clothcd/geometry/obb.hpp"

@@ -15,7 +15,7 @@
 // them exceed (h + margin) |n| at both ends, they do on the whole piece, and so does the distance. This clears in one
 // step the pieces of a pair sliding past at just over h, which the Lipschitz bound only clears after many splits.
 // margin covers the double evaluation of positions and distances (a few ulps of the coordinates) and the 1e-8
-// degeneracy cut-off of geometry/closest_points.cpp (relative to the pair's extent).
+// degeneracy cut-off of geometry/pair_distance_closest_points.cpp (relative to the pair's extent).
 #include "ccd/thickness_contact.hpp"
 
 #include <algorithm>
@@ -23,7 +23,7 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/closest_points.hpp"
+#include "geometry/pair_distance.hpp"
 
 namespace clothcd::ccd::detail {
 

@@ -1,6 +1,6 @@
 // Two-sided sampled Hausdorff distance in the manner of Metro (P. Cignoni, C. Rocchini, R. Scopigno, "Metro: measuring
 // error on simplified surfaces", 1998): samples of each surface (vertices, face centroids, random area-weighted points)
-// against the exact closest point of the other surface (geometry/primitive_distance.hpp: Ericson's 5.1.5), found
+// against the exact closest point of the other surface (geometry/pair_distance.hpp: Ericson's 5.1.5), found
 // through a median-split bounding volume hierarchy.
 #include "clothcd/geometry/hausdorff.hpp"
 
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "clothcd/geometry/bounding_volumes.hpp"
-#include "geometry/primitive_distance.hpp"
+#include "geometry/pair_distance.hpp"
 
 namespace clothcd::geometry {
 namespace {

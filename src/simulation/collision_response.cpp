@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/primitive_distance.hpp"
+#include "geometry/pair_distance.hpp"
 
 namespace clothcd::simulation {
 namespace {

@@ -1,13 +1,13 @@
 // Triangle-triangle intersection and distance for the independent frame check. Intersection: two triangles meet iff an
 // edge of one meets the other (segment-triangle by orientation signs, as in Segura and Feito 2001), with coplanar pairs
 // reduced to 2D; distance: the minimum over the 6 vertex-triangle and 9 edge-edge distances (Ericson's closest points,
-// geometry/primitive_distance.hpp).
+// geometry/pair_distance.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "clothcd/simulation/intersection_check.hpp"
-#include "geometry/primitive_distance.hpp"
+#include "geometry/pair_distance.hpp"
 
 namespace clothcd::simulation {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "ccd/ccd_test_support.hpp"
 #include "ccd/sampled_distance.hpp"
-#include "geometry/closest_points.hpp"
+#include "geometry/pair_distance.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;

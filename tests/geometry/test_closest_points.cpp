@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "geometry/closest_points.hpp"
+#include "geometry/pair_distance.hpp"
 
 namespace {
 

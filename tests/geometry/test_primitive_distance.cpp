@@ -1,8 +1,8 @@
-// Ericson's closest points (geometry/primitive_distance.hpp) in each Voronoi region of a triangle, on a
+// Ericson's closest points (geometry/pair_distance.hpp) in each Voronoi region of a triangle, on a
 // degenerate triangle, and between segments (crossing, parallel, and reduced to points).
 #include <catch2/catch.hpp>
 
-#include "geometry/primitive_distance.hpp"
+#include "geometry/pair_distance.hpp"
 
 using Eigen::Vector3d;
 using namespace clothcd::geometry;

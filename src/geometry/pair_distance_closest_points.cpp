@@ -7,7 +7,7 @@
 // primitive is far from degenerate (sine above 1e-8), so its error stays a small multiple of the unit roundoff / 1e-8
 // times the pair's extent; the thickness test covers that with its margin. When the interior candidate lies on both
 // primitives it is the minimum, and the boundary is skipped.
-#include "geometry/closest_points.hpp"
+#include "geometry/pair_distance.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Ericson's closest points ("Real-Time Collision Detection", 5.1.5 and 5.1.9): the region of the point (or of the
 // segments' parameters) is found from signs of dot products, and the closest point is formed in that region alone.
-#include "geometry/primitive_distance.hpp"
+#include "geometry/pair_distance.hpp"
 
 #include <algorithm>
 
