@@ -31,6 +31,7 @@ struct Interval {
 // x on the closed segment [m, n] (a point when m = n).
 bool on_segment(const V& m, const V& n, const V& x) {
   const V f = sub(n, m), w = sub(x, m);
+  if (is_zero(f)) return is_zero(w);
   if (!is_zero(cross(w, f))) return false;
   const Q along_f = dot(w, f);
   return sgn(along_f) >= 0 && along_f <= dot(f, f);

@@ -43,13 +43,16 @@ Sharing sharing_of(const SharedCorners& shared) {
 
 double clamp_unit(double t) { return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; }
 
-// (w1, w2) from three weights proportional to the corners' barycentric weights (their exact signs agree; rounding may
-// flip a tiny one).
-std::array<double, 2> normalized_weights(double w0, double w1, double w2) {
-  if (w0 + w1 + w2 < 0.0) w0 = -w0, w1 = -w1, w2 = -w2;
-  w0 = std::max(w0, 0.0), w1 = std::max(w1, 0.0), w2 = std::max(w2, 0.0);
-  const double sum = w0 + w1 + w2;
-  if (!(sum > 0.0) || !(sum <= std::numeric_limits<double>::max())) return {1.0 / 3.0, 1.0 / 3.0};
+// (w1, w2) from three determinants proportional to the corners' barycentric weights, whose exact signs agree (or are
+// zero): a rounded value whose sign is not the exact one counts as zero.
+std::array<double, 2> normalized_weights(const Orientation& o0, const Orientation& o1, const Orientation& o2) {
+  const auto magnitude = [](const Orientation& o) { return o.value * o.sign > 0.0 ? std::abs(o.value) : 0.0; };
+  double w0 = magnitude(o0), w1 = magnitude(o1), w2 = magnitude(o2);
+  double sum = w0 + w1 + w2;
+  if (!(sum > 0.0) || !(sum <= std::numeric_limits<double>::max())) {  // only rounding left: the signs alone
+    w0 = o0.sign != 0, w1 = o1.sign != 0, w2 = o2.sign != 0;
+    sum = w0 + w1 + w2;
+  }
   const double first = w1 / sum;
   return {first, std::min(w2 / sum, 1.0 - first)};
 }
@@ -58,6 +61,8 @@ std::array<double, 2> normalized_weights(double w0, double w1, double w2) {
 double zero_parameter(const Orientation& from, const Orientation& to) {
   if (from.sign == 0) return 0.0;
   if (to.sign == 0) return 1.0;
+  // Rounded values whose signs are not the exact ones: the zero is within rounding of both ends.
+  if (from.value * from.sign <= 0.0 || to.value * to.sign <= 0.0) return from.value * from.sign <= 0.0 ? 0.0 : 1.0;
   return clamp_unit(from.value / (from.value - to.value));
 }
 
@@ -164,7 +169,7 @@ class PairTest {
       contact.edge = k;
       contact.edge_parameter = zero_parameter(s[k], s[k1]);
       // The crossing's weight on corner j + 2 is proportional to the volume against edge j.
-      contact.face_weights = normalized_weights(v[1].value, v[2].value, v[0].value);
+      contact.face_weights = normalized_weights(v[1], v[2], v[0]);
     }
     return true;
   }
@@ -273,7 +278,7 @@ class PairTest {
     contact.edge_face = face;
     contact.edge = k;
     contact.edge_parameter = 0.0;
-    contact.face_weights = normalized_weights(e1.value, e2.value, e0.value);
+    contact.face_weights = normalized_weights(e1, e2, e0);
   }
 
   // Edge i of a and edge j of b (coplanar, not collinear) have a common point.
@@ -311,6 +316,19 @@ class PairTest {
   bool b_against_a_known_[3][3] = {};
 };
 
+// The crossing's point on its edge and its point by weights on the other face agree to 2^-40 of the pair's largest
+// coordinate.
+bool crossing_within_rounding(const Triangle& a, const Triangle& b, const TriangleContact& contact) {
+  const Triangle& edge_face = contact.edge_face == 0 ? a : b;
+  const Triangle& other = contact.edge_face == 0 ? b : a;
+  const double s = contact.edge_parameter, w1 = contact.face_weights[0], w2 = contact.face_weights[1];
+  const Eigen::Vector3d on_edge = (1.0 - s) * edge_face[contact.edge] + s * edge_face[(contact.edge + 1) % 3];
+  const Eigen::Vector3d on_face = (1.0 - w1 - w2) * other[0] + w1 * other[1] + w2 * other[2];
+  double largest = 0.0;
+  for (int k = 0; k < 3; ++k) largest = std::max({largest, a[k].cwiseAbs().maxCoeff(), b[k].cwiseAbs().maxCoeff()});
+  return (on_edge - on_face).cwiseAbs().maxCoeff() <= 0x1p-40 * largest;
+}
+
 }  // namespace
 
 SharedCorners shared_corners(const std::array<int, 3>& face_a, const std::array<int, 3>& face_b) {
@@ -330,7 +348,17 @@ SharedCorners shared_corners(const std::array<int, 3>& face_a, const std::array<
 }
 
 TriangleContact intersect_triangles(const Triangle& a, const Triangle& b, const SharedCorners& shared) {
-  return PairTest<true>(a, b, shared).run();
+  TriangleContact contact = PairTest<true>(a, b, shared).run();
+  // The rounded crossing is ill-conditioned where the signs are nearly zero (an edge nearly in the other's plane, a
+  // sliver): then it is taken from the exact construction instead.
+  if (contact.intersect && !crossing_within_rounding(a, b, contact)) {
+    const TriangleContact exact = exact_intersect_triangles(a, b, shared);
+    contact.edge_face = exact.edge_face;
+    contact.edge = exact.edge;
+    contact.edge_parameter = exact.edge_parameter;
+    contact.face_weights = exact.face_weights;
+  }
+  return contact;
 }
 
 bool triangles_intersect(const Triangle& a, const Triangle& b, const SharedCorners& shared) {

@@ -53,8 +53,9 @@ inline double magnitude(const Triangle& a, const Triangle& b) {
 }
 
 /// "" when the crossing is a valid one: parameters in range, the point on the edge and the point by its weights on
-/// the other face within `tolerance` (relative to the pair's magnitude), and not a shared corner (nor on the shared
-/// edge's segment); else what is wrong.
+/// the other face within `tolerance` (relative to the pair's magnitude), and not a shared corner (the edge's end at a
+/// shared corner, or the shared edge itself; its rounded position may still be a shared corner's, next to a sliver);
+/// else what is wrong.
 inline std::string crossing_error(const Triangle& a, const Triangle& b, const SharedCorners& shared,
                                   const TriangleContact& contact, double tolerance) {
   const double s = contact.edge_parameter, w1 = contact.face_weights[0], w2 = contact.face_weights[1];
@@ -68,11 +69,9 @@ inline std::string crossing_error(const Triangle& a, const Triangle& b, const Sh
   int shared_in_edge = 0;
   for (int k = 0; k < shared.count; ++k) {
     const int corner = contact.edge_face == 0 ? shared.pairs[k][0] : shared.pairs[k][1];
-    const Triangle& face = contact.edge_face == 0 ? a : b;
     if (corner == contact.edge && s == 0.0) return "crossing at a shared corner";
     if (corner == (contact.edge + 1) % 3 && s == 1.0) return "crossing at a shared corner";
     if (corner == contact.edge || corner == (contact.edge + 1) % 3) ++shared_in_edge;
-    if (on_edge == face[corner]) return "crossing point is a shared corner";
   }
   if (shared_in_edge == 2) return "crossing on the shared edge";
   return "";
