@@ -13,15 +13,27 @@ namespace {
 using Q = mpq_class;
 using V = std::array<Q, 3>;
 
-V rational(const Eigen::Vector3d& p) { return {Q(p[0]), Q(p[1]), Q(p[2])}; }
-V sub(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V along(const V& p, const V& d, const Q& t) { return {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]}; }
-Q dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V rational(const Eigen::Vector3d& p) {
+  return {Q(p[0]), Q(p[1]), Q(p[2])};
+}
+V sub(const V& a, const V& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+V along(const V& p, const V& d, const Q& t) {
+  return {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
+}
+Q dot(const V& a, const V& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 V cross(const V& a, const V& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-bool is_zero(const V& a) { return sgn(a[0]) == 0 && sgn(a[1]) == 0 && sgn(a[2]) == 0; }
-bool equal(const V& a, const V& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+bool is_zero(const V& a) {
+  return sgn(a[0]) == 0 && sgn(a[1]) == 0 && sgn(a[2]) == 0;
+}
+bool equal(const V& a, const V& b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
 
 // Parameters t in [lo, hi] of the points p + t (q - p) of an edge in the other face.
 struct Interval {

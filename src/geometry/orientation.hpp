@@ -2,7 +2,7 @@
 /// @file
 /// Exact orientation predicates on double coordinates: the sign of a 3x3 determinant (orient3d) or of a 2x2 one on a
 /// coordinate-plane projection (orient2d), decided by a floating-point filter with a proven error bound
-/// (geometry/orientation_filter.hpp) and, when the filter cannot tell, by exact rational arithmetic (GMP). The
+/// (geometry/orientation_filter.hpp) and, when the filter cannot tell, by exact integer arithmetic (GMP). The
 /// triangle intersection test (geometry/triangle_intersection.hpp) runs on them.
 #include <Eigen/Core>
 
@@ -25,11 +25,11 @@ struct Orientation {
 [[nodiscard]] Orientation orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                    int drop_axis);
 
-/// orient3d's sign in GMP rationals only (the filter's fallback).
+/// orient3d's sign in exact GMP arithmetic only (the filter's fallback).
 [[nodiscard]] int exact_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                  const Eigen::Vector3d& s);
 
-/// orient2d's sign in GMP rationals only (the filter's fallback).
+/// orient2d's sign in exact GMP arithmetic only (the filter's fallback).
 [[nodiscard]] int exact_orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                  int drop_axis);
 

@@ -41,7 +41,9 @@ Sharing sharing_of(const SharedCorners& shared) {
   return sharing;
 }
 
-double clamp_unit(double t) { return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0; }
+double clamp_unit(double t) {
+  return t > 0.0 ? (t < 1.0 ? t : 1.0) : 0.0;
+}
 
 // (w1, w2) from three determinants proportional to the corners' barycentric weights, whose exact signs agree (or are
 // zero): a rounded value whose sign is not the exact one counts as zero.

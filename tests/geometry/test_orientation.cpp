@@ -71,7 +71,7 @@ TEST_CASE("the orientation predicates stay exact where products underflow or ove
   int wrong3 = 0, wrong2 = 0;
   // Uniformly tiny, uniformly huge, and one axis tiny against the others.
   // Two axes near 2^-537 put the products of the filter's 2x2 minors around the smallest subnormal.
-  const std::array<V, 6> scales = {V::Constant(1e-160), V::Constant(1e-300),       V::Constant(1e150),
+  const std::array<V, 6> scales = {V::Constant(1e-160), V::Constant(1e-300),        V::Constant(1e150),
                                    V(1e-200, 1.0, 1.0), V(1.0, 0x1p-537, 0x1p-537), V::Constant(0x1p-537)};
   for (const V& scale : scales) {
     for (int n = 0; n < 2000; ++n) {

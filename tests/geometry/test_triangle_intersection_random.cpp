@@ -56,7 +56,9 @@ int unshared_slot(const SharedCorners& shared) {
 }
 
 // A point of a's plane at a + alpha (a1 - a0) + beta (a2 - a0), exact for grid corners and alpha, beta in eighths.
-V on_plane(const Triangle& a, double alpha, double beta) { return a[0] + alpha * (a[1] - a[0]) + beta * (a[2] - a[0]); }
+V on_plane(const Triangle& a, double alpha, double beta) {
+  return a[0] + alpha * (a[1] - a[0]) + beta * (a[2] - a[0]);
+}
 
 }  // namespace
 
@@ -101,14 +103,8 @@ TEST_CASE("pairs on integer grids agree with the reference", "[geometry][triangl
 TEST_CASE("corners moved onto the other face exactly and one ulp off agree with the reference",
           "[geometry][triangle-intersection]") {
   // alpha, beta in eighths: inside, on an edge, at a vertex, or outside in the plane.
-  const std::array<std::array<double, 2>, 8> spots = {{{0.25, 0.25},
-                                                       {0.5, 0.0},
-                                                       {0.0, 0.625},
-                                                       {0.5, 0.5},
-                                                       {0.0, 0.0},
-                                                       {1.0, 0.0},
-                                                       {1.25, 0.125},
-                                                       {-0.125, 0.5}}};
+  const std::array<std::array<double, 2>, 8> spots = {
+      {{0.25, 0.25}, {0.5, 0.0}, {0.0, 0.625}, {0.5, 0.5}, {0.0, 0.0}, {1.0, 0.0}, {1.25, 0.125}, {-0.125, 0.5}}};
   for (const int exponent : {-20, 0, 20}) {
     for (const double offset : {0.0, 0x1p30}) {
       std::mt19937_64 random(2000 + exponent + (offset > 0));
