@@ -1,5 +1,6 @@
-// The exact orientation predicates: the filters of geometry/orientation_filter.hpp, and their fallbacks in GMP
-// integers (the coordinates scaled exactly by one power of two).
+// The exact orientation predicates: the filters of geometry/orientation_filter.hpp, their fallbacks on expansions
+// (geometry/expansion_orientation.hpp), and the last resort in GMP integers (the coordinates scaled exactly by one
+// power of two).
 #include "geometry/orientation.hpp"
 
 #include <gmpxx.h>
@@ -8,7 +9,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "geometry/expansion_orientation.hpp"
 #include "geometry/orientation_filter.hpp"
 
 namespace clothcd::geometry {
@@ -20,6 +23,17 @@ Orientation orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const E
 
 Orientation orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, int drop_axis) {
   return filter::orient2d_exact_sign(p, q, r, drop_axis);
+}
+
+int exact_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
+                   const Eigen::Vector3d& s) {
+  const std::optional<int> sign = detail::expansion_orient3d(p, q, r, s);
+  return sign ? *sign : gmp_orient3d(p, q, r, s);
+}
+
+int exact_orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, int drop_axis) {
+  const std::optional<int> sign = detail::expansion_orient2d(p, q, r, drop_axis);
+  return sign ? *sign : gmp_orient2d(p, q, r, drop_axis);
 }
 
 namespace {
@@ -46,8 +60,8 @@ void to_integers(const std::array<double, N>& values, std::array<mpz_class, N>& 
 
 }  // namespace
 
-int exact_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
-                   const Eigen::Vector3d& s) {
+int gmp_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
+                 const Eigen::Vector3d& s) {
   std::array<mpz_class, 12> z;
   to_integers<12>({p[0], p[1], p[2], q[0], q[1], q[2], r[0], r[1], r[2], s[0], s[1], s[2]}, z);
   mpz_class e1[3], e2[3], d[3];
@@ -61,7 +75,7 @@ int exact_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eig
   return sgn(det);
 }
 
-int exact_orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, int drop_axis) {
+int gmp_orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r, int drop_axis) {
   const int i = (drop_axis + 1) % 3, j = (drop_axis + 2) % 3;
   std::array<mpz_class, 6> z;
   to_integers<6>({p[i], p[j], q[i], q[j], r[i], r[j]}, z);

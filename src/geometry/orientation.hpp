@@ -2,7 +2,8 @@
 /// @file
 /// Exact orientation predicates on double coordinates: the sign of a 3x3 determinant (orient3d) or of a 2x2 one on a
 /// coordinate-plane projection (orient2d), decided by a floating-point filter with a proven error bound
-/// (geometry/orientation_filter.hpp) and, when the filter cannot tell, by exact integer arithmetic (GMP). The
+/// (geometry/orientation_filter.hpp) and, when the filter cannot tell, exactly on floating-point expansions
+/// (geometry/expansion_orientation.hpp), or in GMP integers where those could lose bits to underflow or overflow. The
 /// triangle intersection test (geometry/triangle_intersection.hpp) runs on them.
 #include <Eigen/Core>
 
@@ -25,12 +26,20 @@ struct Orientation {
 [[nodiscard]] Orientation orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                    int drop_axis);
 
-/// orient3d's sign in exact GMP arithmetic only (the filter's fallback).
+/// orient3d's sign without the filter (its fallback): on expansions, in GMP where they cannot decide.
 [[nodiscard]] int exact_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                  const Eigen::Vector3d& s);
 
-/// orient2d's sign in exact GMP arithmetic only (the filter's fallback).
+/// orient2d's sign without the filter (its fallback): on expansions, in GMP where they cannot decide.
 [[nodiscard]] int exact_orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                  int drop_axis);
+
+/// orient3d's sign in exact GMP arithmetic only (the last resort, and the reference of the tests).
+[[nodiscard]] int gmp_orient3d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
+                               const Eigen::Vector3d& s);
+
+/// orient2d's sign in exact GMP arithmetic only (the last resort, and the reference of the tests).
+[[nodiscard]] int gmp_orient2d(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
+                               int drop_axis);
 
 }  // namespace clothcd::geometry

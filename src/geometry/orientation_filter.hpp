@@ -110,7 +110,7 @@ inline Orientation orient2d_filter(const Eigen::Vector3d& p, const Eigen::Vector
   return {value, decide(value, kOrient2dFactor * mi * mj)};
 }
 
-/// orient3d with the exact fallback: the filter, then GMP when it cannot decide.
+/// orient3d with the exact fallback: the filter, then expansions (GMP where they cannot decide).
 inline Orientation orient3d_exact_sign(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                        const Eigen::Vector3d& s) {
   Orientation o = PlaneFilter(p, q, r).side(s);
@@ -118,7 +118,7 @@ inline Orientation orient3d_exact_sign(const Eigen::Vector3d& p, const Eigen::Ve
   return o;
 }
 
-/// orient2d with the exact fallback: the filter, then GMP when it cannot decide.
+/// orient2d with the exact fallback: the filter, then expansions (GMP where they cannot decide).
 inline Orientation orient2d_exact_sign(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r,
                                        int drop_axis) {
   Orientation o = orient2d_filter(p, q, r, drop_axis);

@@ -16,9 +16,10 @@
 /// Degenerate (zero-area) triangles are the segment or point they cover, by the same rule (CGAL instead reports each
 /// degenerate face on its own and pairs it with no other).
 ///
-/// Every decision is exact: orientation signs from geometry/orientation.hpp (a proven floating-point filter, GMP when
-/// it cannot decide). Non-degenerate pairs are decided by those signs (no allocation unless a sign needs GMP); pairs
-/// with a degenerate face go to the rational reference (geometry/exact_triangle_intersection.hpp).
+/// Every decision is exact: orientation signs from geometry/orientation.hpp (a proven floating-point filter, then
+/// floating-point expansions, GMP only for coordinates near underflow or overflow). Non-degenerate pairs are decided
+/// by those signs (no allocation unless a sign needs GMP); pairs with a degenerate face go to the rational reference
+/// (geometry/exact_triangle_intersection.hpp).
 #include <Eigen/Core>
 #include <array>
 
