@@ -1,15 +1,20 @@
-// The triangle intersection test on exact orientation signs. For non-degenerate triangles it rests on one fact: the
-// common set C of two closed triangles is convex, and its extreme points lie on edges (of one triangle, inside the
-// other), so C has a point outside the hull S of the shared corners iff some edge of one triangle meets the other
-// outside S. The tests below enumerate just enough of those edge points:
+// The triangle intersection test on exact orientation signs. Not coplanar, the two triangles meet the line L of their
+// planes in two segments, and intersect iff those overlap: without shared corners two orient3d compare their ends
+// (Devillers and Guigue 2002); with a shared vertex, an end of both, the signs of the corners against the planes
+// tell the directions in which they leave it; with a shared edge they meet beyond it only when coplanar.
+// For the crossing point, and for coplanar pairs, the rest rests on one fact: the common set C of two closed
+// triangles is convex, and its extreme points lie on edges (of one triangle, inside the other), so C has a point
+// outside the hull S of the shared corners iff some edge of one triangle meets the other outside S. The tests below
+// enumerate just enough of those edge points:
 //   - not coplanar: each edge crossing the other's plane (endpoints on both sides, or one on it) meets the other
 //     triangle iff its line passes it on one side of all three edges (orient3d of the two edges); an edge lying in
 //     the other's plane needs no test, as C's extreme points on it are found on the adjacent crossing edges. With a
 //     shared vertex only the edges opposite it can meet the other beyond it (the farthest common point along an edge
-//     from v is a corner of one, or on an opposite edge); with a shared edge they meet beyond it only when coplanar.
+//     from v is a corner of one, or on an opposite edge).
 //   - coplanar (orient2d on a coordinate plane along which the triangles project non-degenerately, so the projection
 //     keeps every incidence): the corners (not shared) inside the other triangle, and the crossings of two edges that
-//     contain no common shared corner (a crossing of edges through one shared corner is that corner).
+//     contain no common shared corner (a crossing of edges through one shared corner is that corner). Faces sharing
+//     an edge and folded onto each other always overlap.
 #include "geometry/triangle_intersection.hpp"
 
 #include <algorithm>
@@ -138,19 +143,74 @@ class PairTest {
     return edge_edge_[i][j];
   }
 
-  // Not coplanar, both triangles non-degenerate.
+  // Not coplanar, both triangles non-degenerate, no shared corner or one (faces sharing an edge were rejected by the
+  // plane sides): decided on the line L of the two planes, which each triangle meets in a segment (its common points
+  // with the other's plane); the crossing point, when wanted, from the edges.
   TriangleContact crossing() {
     TriangleContact contact;
-    if (sharing_.count == 0) {
-      for (int face = 0; face < 2 && !contact.intersect; ++face) {
-        for (int k = 0; k < 3 && !contact.intersect; ++k) contact.intersect = crosses_plane_inside(face, k, contact);
-      }
-    } else {  // one shared vertex (a shared edge was rejected by the plane sides): the opposite edges only
-      const int ia = shared_.pairs[0][0], jb = shared_.pairs[0][1];
-      contact.intersect =
-          crosses_plane_inside(0, (ia + 1) % 3, contact) || crosses_plane_inside(1, (jb + 1) % 3, contact);
+    contact.intersect = sharing_.count == 0 ? segments_overlap() : beyond_shared_vertex();
+    if constexpr (kCrossing) {
+      if (contact.intersect) find_crossing(contact);
     }
     return contact;
+  }
+
+  // The corner of a triangle alone on its side of the other's plane (the others on the opposite side or in the
+  // plane), and that side; a corner in the plane counts as alone, on the side opposite the others, when they are
+  // strictly on one side.
+  static std::array<int, 2> lone_corner(const Orientation (&s)[3]) {
+    for (int i = 0; i < 3; ++i) {
+      const int sign = s[i].sign;
+      if (sign != 0 && sign * s[(i + 1) % 3].sign <= 0 && sign * s[(i + 2) % 3].sign <= 0) return {i, sign};
+    }
+    for (int i = 0; i < 3; ++i) {
+      if (s[i].sign == 0) return {i, -s[(i + 1) % 3].sign};
+    }
+    return {0, 0};  // not reached: the corners are neither all on one side nor all in the plane
+  }
+
+  // No shared corner (Devillers and Guigue 2002): with a's lone corner a0 and b's b0 both on the positive side of the
+  // other's plane (swapping the other two corners of the other triangle flips its normal, and so that side), a meets
+  // L between its edges a0 a1 (at one end along L) and a0 a2, and b between b0 b1 and b0 b2 in the opposite order;
+  // the segments overlap when the two orient3d of corresponding edges say that neither lies past the other's end.
+  bool segments_overlap() const {
+    const auto [ia, side_a] = lone_corner(a_sides_);
+    const auto [jb, side_b] = lone_corner(b_sides_);
+    const Eigen::Vector3d* a1 = &a_[(ia + 1) % 3];
+    const Eigen::Vector3d* a2 = &a_[(ia + 2) % 3];
+    const Eigen::Vector3d* b1 = &b_[(jb + 1) % 3];
+    const Eigen::Vector3d* b2 = &b_[(jb + 2) % 3];
+    if (side_a < 0) std::swap(b1, b2);
+    if (side_b < 0) std::swap(a1, a2);
+    const Eigen::Vector3d &a0 = a_[ia], &b0 = b_[jb];
+    return filter::orient3d_exact_sign(a0, *a1, b0, *b1).sign <= 0 &&
+           filter::orient3d_exact_sign(a0, *a2, b0, *b2).sign >= 0;
+  }
+
+  // One shared vertex v, a corner of both segments on L, so they meet beyond it when they leave v in one direction.
+  // With a = (v, a1, a2) in its cyclic order and d = n_a x n_b along L, a's segment leaves v along +d when a1 lies
+  // more on the positive side of b's plane than a2 (sign(s(a1) - s(a2)) > 0; the two differ, or a would not cross b's
+  // plane, or lie in it), and b's, symmetrically, along -d when sign(s(b1) - s(b2)) > 0: no further orientation.
+  bool beyond_shared_vertex() const {
+    const int ia = shared_.pairs[0][0], jb = shared_.pairs[0][1];
+    const int toward_a = a_sides_[(ia + 1) % 3].sign - a_sides_[(ia + 2) % 3].sign;
+    const int toward_b = b_sides_[(jb + 1) % 3].sign - b_sides_[(jb + 2) % 3].sign;
+    return toward_a * toward_b < 0;
+  }
+
+  // An intersecting pair's crossing: an edge crossing the other's plane inside the other triangle (with a shared
+  // vertex only the edges opposite it can meet the other beyond it).
+  void find_crossing(TriangleContact& contact) {
+    if (sharing_.count == 0) {
+      for (int face = 0; face < 2; ++face) {
+        for (int k = 0; k < 3; ++k) {
+          if (crosses_plane_inside(face, k, contact)) return;
+        }
+      }
+    } else {
+      const int ia = shared_.pairs[0][0], jb = shared_.pairs[0][1];
+      if (!crosses_plane_inside(0, (ia + 1) % 3, contact)) crosses_plane_inside(1, (jb + 1) % 3, contact);
+    }
   }
 
   // Edge k of `face` crosses the other triangle's plane inside that triangle.
@@ -184,7 +244,14 @@ class PairTest {
       return exact_intersect_triangles(a_, b_, shared_);
     }
     TriangleContact contact = coplanar_miss();
-    if (sharing_.count == 2 && !folded()) return contact;
+    if (sharing_.count == 2) {
+      if (!folded()) return contact;
+      // Folded onto each other, they overlap on their common side of the edge: only the crossing point is left.
+      if constexpr (!kCrossing) {
+        contact.intersect = true;
+        return contact;
+      }
+    }
     contact.intersect = coplanar_overlap(contact);
     return contact;
   }
