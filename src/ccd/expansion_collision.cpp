@@ -30,10 +30,10 @@
 #include <optional>
 #include <vector>
 
-#include "ccd/expansion.hpp"
 #include "ccd/expansion_polynomial.hpp"
 #include "ccd/expansion_roots.hpp"
 #include "ccd/projected_triangle.hpp"
+#include "geometry/expansion.hpp"
 
 namespace clothcd::ccd::detail {
 

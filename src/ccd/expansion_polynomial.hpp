@@ -8,9 +8,14 @@
 #include <initializer_list>
 #include <optional>
 
-#include "ccd/expansion.hpp"
+#include "geometry/expansion.hpp"
 
 namespace clothcd::ccd::detail {
+
+/// The exact numbers of the expansion tier.
+using geometry::detail::Expansion;
+/// Thrown when an expansion would outgrow its capacity.
+using geometry::detail::ExpansionCapacityExceeded;
 
 /// sum c[i] t^i, degree at most 3.
 struct Poly {

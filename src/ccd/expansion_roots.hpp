@@ -5,8 +5,8 @@
 #include <optional>
 #include <vector>
 
-#include "ccd/expansion.hpp"
 #include "ccd/expansion_polynomial.hpp"
+#include "geometry/expansion.hpp"
 
 namespace clothcd::ccd::detail {
 

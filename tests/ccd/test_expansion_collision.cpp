@@ -8,14 +8,14 @@
 #include <random>
 
 #include "ccd/ccd_test_support.hpp"
-#include "ccd/expansion.hpp"
 #include "ccd/expansion_collision.hpp"
+#include "geometry/expansion.hpp"
 
 using clothcd::PairKind;
 using clothcd::test::make_query;
 using clothcd::test::Vector3d;
 namespace ccd = clothcd::ccd;
-using ccd::detail::Expansion;
+using clothcd::geometry::detail::Expansion;
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <stdexcept>
 
-namespace clothcd::ccd::detail {
+namespace clothcd::geometry::detail {
 
 /// Thrown when an expansion would need more than Expansion::kCapacity components.
 struct ExpansionCapacityExceeded : std::length_error {
@@ -71,4 +71,4 @@ class Expansion {
   double terms_[kCapacity];  // terms_[0..size_): non-overlapping, increasing magnitude, no zeros
 };
 
-}  // namespace clothcd::ccd::detail
+}  // namespace clothcd::geometry::detail

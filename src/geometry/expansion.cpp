@@ -3,12 +3,12 @@
 // of an expansion with a double, all with zero elimination. Each routine keeps the expansions strongly
 // non-overlapping, which the next routine needs (round-to-nearest-even double arithmetic, no FMA contraction: ISO
 // C++ mode).
-#include "ccd/expansion.hpp"
+#include "geometry/expansion.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace clothcd::ccd::detail {
+namespace clothcd::geometry::detail {
 
 namespace {
 
@@ -244,4 +244,4 @@ double Expansion::estimate() const {
   return s;
 }
 
-}  // namespace clothcd::ccd::detail
+}  // namespace clothcd::geometry::detail
