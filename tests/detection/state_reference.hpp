@@ -125,7 +125,8 @@ inline std::vector<ReferencePair> reference_proximity(const std::vector<StateBod
   return within;
 }
 
-/// The intersecting face pairs at the state, by brute force (the rational reference of every face pair).
+/// The intersecting face pairs at the state, by brute force (the rational reference of every face pair), sorted as
+/// (body, face) of the first face, then of the second.
 inline std::vector<std::array<std::int32_t, 4>> reference_intersections(const std::vector<StateBody>& bodies) {
   std::vector<std::array<std::int32_t, 4>> found;
   const auto corners = [&](int body, int face) {
@@ -151,6 +152,7 @@ inline std::vector<std::array<std::int32_t, 4>> reference_intersections(const st
       }
     }
   }
+  std::sort(found.begin(), found.end());  // the detector's order: first face, then second (body, face)
   return found;
 }
 

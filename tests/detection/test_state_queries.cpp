@@ -1,8 +1,7 @@
 // The questions of one state (proximity, minimum_distance, intersections) against brute-force references in exact
 // arithmetic, on seeded crumpled cloths, a cloth over a sphere, pairs at exactly the distance and scales from 1e-6 to
 // 1e6; one thread against TBB; bad input; interleaving with the steps of detect().
-#include <catch2/catch_test_macros.hpp>
-#include <catch2/generators/catch_generators.hpp>
+#include <catch2/catch.hpp>
 
 #include <cmath>
 #include <limits>
