@@ -30,6 +30,7 @@
 #include "ccd/rounded_search.hpp"
 #include "ccd/thickness_contact.hpp"
 #include "clothcd/ccd/ccd.hpp"
+#include "geometry/pair_distance.hpp"
 
 namespace clothcd::ccd {
 
@@ -65,39 +66,12 @@ void fill_contact_geometry(const CcdQuery& query, CcdResult& result) {
     start[i] = scale * query.start[i];
     x[i] = start[i] + result.toi * (scale * query.end[i] - start[i]);
   }
-  Eigen::Vector3d normal;
-  Eigen::Vector3d towards_first;
-  if (query.kind == PairKind::VertexFace) {
-    const Eigen::Vector3d e1 = x[2] - x[1];
-    const Eigen::Vector3d e2 = x[3] - x[1];
-    const Eigen::Vector3d r = x[0] - x[1];
-    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
-    const double det = d11 * d22 - d12 * d12;
-    if (det > 0.0) {
-      const double w1 = (d22 * e1.dot(r) - d12 * e2.dot(r)) / det;
-      const double w2 = (d11 * e2.dot(r) - d12 * e1.dot(r)) / det;
-      result.parameters = {w1, w2};
-    }
-    normal = e1.cross(e2);
-    towards_first = start[0] - start[1];
-  } else {
-    const Eigen::Vector3d da = x[1] - x[0];
-    const Eigen::Vector3d db = x[3] - x[2];
-    const Eigen::Vector3d r = x[0] - x[2];
-    const double a = da.dot(da), b = da.dot(db), c = db.dot(db), d = da.dot(r), e = db.dot(r);
-    const double det = a * c - b * b;
-    if (det > 0.0) {
-      const double s = std::clamp((b * e - c * d) / det, 0.0, 1.0);
-      const double u = std::clamp((a * e - b * d) / det, 0.0, 1.0);
-      result.parameters = {s, u};
-    }
-    normal = da.cross(db);
-    towards_first = (start[0] + start[1]) - (start[2] + start[3]);
-  }
-  const double length = normal.norm();
-  if (!(length > 0.0) || !std::isfinite(length)) return;
-  normal /= length;
-  result.normal = normal.dot(towards_first) < 0.0 ? -normal : normal;
+  const geometry::ContactFrame frame =
+      query.kind == PairKind::VertexFace
+          ? geometry::point_triangle_contact_frame(x, start[0] - start[1])
+          : geometry::segment_segment_contact_frame(x, (start[0] + start[1]) - (start[2] + start[3]));
+  result.parameters = frame.parameters;
+  result.normal = frame.normal;
 }
 
 CcdResult make_hit(const CcdQuery& query, double toi, CcdState state) {

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// Exact distances of the primitive pairs of one state: a point against a closed triangle (vertex-face) and two closed
-/// segments (edge-edge), on the double coordinates taken as real numbers. Whether a pair is within a distance is
-/// decided exactly; the reported distance is within kDistanceRelativeError of the exact one, and the closest feature
-/// (DistanceType) is the exact one.
+/// segments (edge-edge), on the (finite) double coordinates taken as real numbers. Whether a pair is within a distance
+/// is decided exactly; the reported distance is within kDistanceRelativeError of the exact one (below the normal range,
+/// 2^-1022, within 2^-1074 of it), and the closest feature (DistanceType) is the exact one.
 ///
 /// A floating-point filter with certified error bounds (geometry/bounded_arithmetic.hpp) decides almost every pair;
 /// the rest go to an exact tier in GMP rationals (geometry/rational_pair_distance.hpp).
@@ -18,7 +18,8 @@
 /// bit: point_triangle_closest and segment_segment_closest (the CCD's thickness test; with the contact parameters of
 /// degenerate primitives), and Ericson's Voronoi-region closest points (C. Ericson, "Real-Time Collision Detection",
 /// 5.1.5, 5.1.9) closest_point_on_triangle, point_triangle_distance_squared and segment_segment_distance_squared (the
-/// Hausdorff measure and the simulation).
+/// Hausdorff measure and the simulation), and the CCD's contact frames (contact parameters and normal at a time of
+/// impact).
 #include <Eigen/Dense>
 
 #include <array>
@@ -40,13 +41,14 @@ struct PairDistance {
   DistanceType type = DistanceType::PointFace;  ///< The feature of the closest points (file comment for ties).
 };
 
-/// True exactly when the distance of point p and the closed triangle t0 t1 t2 is less than d (d > 0; a pair at
-/// exactly d is not within); then `out` holds the pair's distance record. `out` is left as it was otherwise.
+/// True exactly when the distance of point p and the closed triangle t0 t1 t2 is less than d (a pair at exactly d is
+/// not within; false for d <= 0 or NaN, true for d = infinity); then `out` holds the pair's distance record. `out` is
+/// left as it was otherwise.
 bool point_triangle_within(const Eigen::Vector3d& p, const Eigen::Vector3d& t0, const Eigen::Vector3d& t1,
                            const Eigen::Vector3d& t2, double d, PairDistance& out);
 
-/// True exactly when the distance of the closed segments a0 a1 and b0 b1 is less than d (d > 0); then `out` holds the
-/// pair's distance record. `out` is left as it was otherwise.
+/// True exactly when the distance of the closed segments a0 a1 and b0 b1 is less than d (as point_triangle_within);
+/// then `out` holds the pair's distance record. `out` is left as it was otherwise.
 bool segment_segment_within(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1, const Eigen::Vector3d& b0,
                             const Eigen::Vector3d& b1, double d, PairDistance& out);
 
@@ -102,5 +104,26 @@ enum class FaceRounding {
 /// Squared distance between the closed segments p1 q1 and p2 q2 (either may be a point).
 [[nodiscard]] double segment_segment_distance_squared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
                                                       const Eigen::Vector3d& p2, const Eigen::Vector3d& q2);
+
+// The CCD's contact frames (geometry/pair_distance_contact_frame.cpp).
+
+/// The contact parameters and normal of a pair at a contact, in double precision.
+struct ContactFrame {
+  /// Vertex-face: the barycentric weights (w1, w2) of the vertex's projection onto the triangle's plane (not clamped to
+  /// the triangle). Edge-edge: the parameters (s, u) of the closest points of the two lines, each clamped to [0, 1].
+  /// Zero when the triangle or the pair of edges is degenerate (the normal equations' determinant is not positive).
+  std::array<double, 2> parameters{};
+  /// Unit face normal or cross product of the edges, turned towards the first primitive; zero when degenerate.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+/// The contact frame of point x[0] and triangle x[1] x[2] x[3]; the normal has a non-negative dot product with
+/// towards_first.
+[[nodiscard]] ContactFrame point_triangle_contact_frame(const std::array<Eigen::Vector3d, 4>& x,
+                                                        const Eigen::Vector3d& towards_first);
+
+/// The contact frame of the edges x[0] x[1] and x[2] x[3] (parameters s on the first, u on the second).
+[[nodiscard]] ContactFrame segment_segment_contact_frame(const std::array<Eigen::Vector3d, 4>& x,
+                                                         const Eigen::Vector3d& towards_first);
 
 }  // namespace clothcd::geometry

@@ -212,3 +212,29 @@ TEST_CASE("pair distance: parallel, collinear and zero-length segments", "[pair-
   CHECK(clothcd::geometry::segment_segment_distance(a0, a1, Vector3d(1, 1, 0), Vector3d(3, 1, 0)).type ==
         DistanceType::VertexA1Edge);
 }
+
+TEST_CASE("pair distance: asked distances and coordinates beyond the filter's range", "[pair-distance]") {
+  const Points vf{Vector3d(0.25, 0.25, 0.5), Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  const Points ee{Vector3d(-1, 0, 0), Vector3d(1, 0, 0), Vector3d(0, -1, 0.5), Vector3d(0, 1, 0.5)};
+  for (bool vertex_face : {true, false}) {
+    const Points& x = vertex_face ? vf : ee;
+    clothcd::geometry::PairDistance out;
+    const auto within = [&](double d) {
+      return vertex_face ? clothcd::geometry::point_triangle_within(x[0], x[1], x[2], x[3], d, out)
+                         : clothcd::geometry::segment_segment_within(x[0], x[1], x[2], x[3], d, out);
+    };
+    CHECK_FALSE(within(0.0));
+    CHECK_FALSE(within(-1.0));
+    CHECK_FALSE(within(std::numeric_limits<double>::quiet_NaN()));
+    CHECK(within(kInfinity));
+    CHECK(out.distance == 0.5);
+    check_pair(vertex_face, x, 1e200);  // beyond the filter's 2^100: the exact tier
+    // Coordinates beyond 2^100, and the same pair scaled down by 2^-200 (exact): the same decisions, scaled.
+    Points huge = x, tiny = x;
+    for (int i = 0; i < 4; ++i) huge[i] = x[i] * 0x1p200, tiny[i] = x[i] * 0x1p-200;
+    CHECK(check_pair(vertex_face, huge, 0x1p200));
+    CHECK_FALSE(check_pair(vertex_face, huge, 0x1p199));
+    CHECK(check_pair(vertex_face, tiny, 0x1p-200));
+    CHECK_FALSE(check_pair(vertex_face, tiny, 0x1p-201));
+  }
+}
