@@ -95,3 +95,18 @@ TEST_CASE("points sharing a coordinate orient exactly to zero", "[geometry][orie
   CHECK(orient2d(p, q, r, 1).sign != 0);
   CHECK(orient2d(p, q, r, 0).sign == 0);
 }
+
+TEST_CASE("orient3d's permanent bound does not decide where underflow can flip the rounded sign",
+          "[geometry][orientation]") {
+  // The three products d_k n_k are 0.625, 0.625 and -1.375 times 2^-1074: rounded to the subnormal grid they sum to
+  // +2^-1074, exactly they sum to -0.125 2^-1074 (a permanent far below 2^-950).
+  const V p = V::Zero(), q(0x1p-300, 0.0, -0x1p-300), r(0.0, 0x1p-300, -0x1p-300);
+  const V s = 0x1p-474 * V(0.625, 0.625, -1.375);
+  REQUIRE(gmp_orient3d(p, q, r, s) == -1);
+  CHECK(orient3d(p, q, r, s).sign == -1);
+  // The cofactors are 0.625, 0.6875 and 1.375 times 2^-1074, all rounded to 2^-1074, then multiplied by d = 2^600
+  // (1, 1, -1): the permanent 3 2^-474 is large, but not against the largest axis maximum 2^600.
+  const V e1(11.0 * 0x1p-540, 0.0, -5.0 * 0x1p-540), e2(0.0, 0x1p-537, -0x1p-538), d = 0x1p600 * V(1.0, 1.0, -1.0);
+  REQUIRE(gmp_orient3d(p, e1, e2, d) == -1);
+  CHECK(orient3d(p, e1, e2, d).sign == -1);
+}
