@@ -121,10 +121,15 @@ long MinimumDistanceStage::run(ccd::PairBlock& block, const std::uint64_t* keys)
   const auto t = StageClock::now();
   const bool vertex_face = block.kind() == PairKind::VertexFace;
   const std::uint64_t kind_offset = vertex_face ? 0 : edge_edge_offset_;
+  geometry::PairDistance d;
   for (int i = 0; i < block.size(); ++i) {
     const std::array<Eigen::Vector3d, 4> x = state_points(block, i);
-    const geometry::PairDistance d = vertex_face ? geometry::point_triangle_distance(x[0], x[1], x[2], x[3])
-                                                 : geometry::segment_segment_distance(x[0], x[1], x[2], x[3]);
+    // A pair at or beyond the search's bound can neither beat nor tie the closest so far (see lower_bound_to), so
+    // the exact membership test, cheap for most pairs, spares measuring them.
+    const double bound = search_bound_.load(std::memory_order_relaxed);
+    const bool within = vertex_face ? geometry::point_triangle_within(x[0], x[1], x[2], x[3], bound, d)
+                                    : geometry::segment_segment_within(x[0], x[1], x[2], x[3], bound, d);
+    if (!within) continue;
     KeyedProximity candidate;
     candidate.key = kind_offset + keys[block.tag(i)];
     fill_proximity(block, i, d, candidate.record);
