@@ -102,7 +102,7 @@ def cloth():
 
 def test_proximity_reports_the_pairs_within_the_distance(cloth):
     x, faces, truth = cloth
-    d = 0.03
+    d = 0.08
     detector = clothcd.CollisionDetector(faces, len(x))
     pairs = detector.proximity(x, d)
     assert isinstance(pairs, clothcd.Proximities)
@@ -128,7 +128,7 @@ def test_proximity_reports_the_pairs_within_the_distance(cloth):
 
 def test_the_vertex_face_parameters_give_the_closest_point(cloth):
     x, faces, _ = cloth
-    pairs = clothcd.CollisionDetector(faces, len(x)).proximity(x, 0.03)
+    pairs = clothcd.CollisionDetector(faces, len(x)).proximity(x, 0.08)
     vf = pairs.kind == clothcd.VERTEX_FACE
     v = pairs.vertices[vf]
     w1, w2 = pairs.parameters[vf, 0], pairs.parameters[vf, 1]
@@ -188,7 +188,7 @@ def test_intersections_find_a_face_pushed_through_the_cloth():
 
 def test_closest_feature_contacts_list_each_contact_once(cloth):
     x, faces, _ = cloth
-    pairs = clothcd.CollisionDetector(faces, len(x)).proximity(x, 0.03)
+    pairs = clothcd.CollisionDetector(faces, len(x)).proximity(x, 0.08)
     contacts = clothcd.closest_feature_contacts(pairs)
     assert isinstance(contacts, clothcd.FeatureContacts)
     assert 0 < len(contacts) <= len(pairs)

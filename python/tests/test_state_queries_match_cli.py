@@ -35,7 +35,7 @@ def test_proximity_matches_the_cli(cli, tmp_path):
     theirs = cli_json(cli, "proximity", path, "--distance", 0.04)
     vf = ours.kind == clothcd.VERTEX_FACE
     assert len(ours) > 10
-    assert [(c["pair"][0], *c["face_vertices"]) for c in theirs["vertex_face"]] == ours.vertices[vf].tolist()
+    assert [[c["pair"][0], *c["face_vertices"]] for c in theirs["vertex_face"]] == ours.vertices[vf].tolist()
     assert [c["pair"][0] + c["pair"][1] for c in theirs["edge_edge"]] == ours.vertices[~vf].tolist()
     assert [c["distance"] for c in theirs["vertex_face"] + theirs["edge_edge"]] == \
         ours.distance[vf].tolist() + ours.distance[~vf].tolist()
