@@ -29,10 +29,21 @@ from ._clothcd import (
 )
 from . import _clothcd
 from .collisions import EDGE_EDGE, VERTEX_FACE, Collision, Collisions, EarliestImpact
+from .state_queries import (
+    CONTACT_KINDS,
+    DISTANCE_TYPES,
+    FeatureContacts,
+    Intersections,
+    MinimumDistance,
+    Proximities,
+    closest_feature_contacts,
+    intersections,
+)
 
 __all__ = [
-    "__version__", "Collision", "CollisionBudgetExceeded", "Collisions", "CollisionDetector", "EarliestImpact", "ccd",
-    "default_model_dir", "load_mesh",
+    "__version__", "CONTACT_KINDS", "DISTANCE_TYPES", "Collision", "CollisionBudgetExceeded", "Collisions",
+    "CollisionDetector", "EarliestImpact", "FeatureContacts", "Intersections", "MinimumDistance", "Proximities", "ccd",
+    "closest_feature_contacts", "default_model_dir", "load_mesh",
     "load_mesh_frames", "make_grid", "make_paper_cloth", "make_uv_sphere", "obb", "render_png", "save_mesh", "simplify",
     "simulate", "simulate_scene",
 ]
@@ -109,8 +120,34 @@ class CollisionDetector:
         pairs = list(Collisions(kind, bodies, vertices, tois, parameters, normal, conservative.view(bool)))
         return EarliestImpact(toi, hit, pairs[0] if pairs else None, windows)
 
+    def proximity(self, x: npt.ArrayLike, distance: float) -> Proximities:
+        """Every pair detect() covers whose distance at the state `x` ((N, 3) cloth positions, taken as detect() takes
+        them; the obstacles where they rest) is below `distance` (exactly: a pair at `distance` is not reported), with
+        its distance, closest points and direction. Runs without the GIL; Ctrl-C stops it. Raises ValueError on a NaN
+        or infinite coordinate, a wrong shape or a distance that is <= 0, NaN or infinite, CollisionBudgetExceeded
+        beyond max_collisions pairs."""
+        return Proximities(*self._detector.proximity(np.asarray(x, dtype=np.float64), float(distance)))
+
+    def minimum_distance(self, x: npt.ArrayLike, upper_bound: float = float("inf")) -> MinimumDistance:
+        """The smallest distance at the state `x` over the pairs proximity() covers, and a pair that has it (a branch
+        and bound: no distance to guess). With `upper_bound` only pairs closer than it count, which ends the search
+        sooner (found is False when there is none). Raises as proximity() does."""
+        found, distance, pair = self._detector.minimum_distance(np.asarray(x, dtype=np.float64), float(upper_bound))
+        return MinimumDistance(found, distance, Proximities(*pair) if found else None)
+
+    def intersections(self, x: npt.ArrayLike) -> Intersections:
+        """Every pair of intersecting faces at the state `x` (closed triangles, touching counts; faces sharing a
+        vertex or an edge only where they meet beyond it), decided exactly. Raises as proximity() does."""
+        return intersections(self._detector.intersections(np.asarray(x, dtype=np.float64)))
+
+    def is_intersection_free(self, x: npt.ArrayLike) -> bool:
+        """True when no pair of faces intersects at the state `x` (intersections() would be empty); stops at the
+        first intersecting pair. Raises as proximity() does."""
+        return self._detector.is_intersection_free(np.asarray(x, dtype=np.float64))
+
     def stats(self) -> dict:
-        """Counts and times of the last detect() or earliest_impact() call."""
+        """Counts and times of the last detect(), earliest_impact() or state query (proximity, minimum_distance,
+        intersections, is_intersection_free: candidates are the pairs tested, collisions the records found)."""
         return self._detector.stats()
 
 

@@ -1,7 +1,7 @@
-// CollisionDetector and the CCD on query arrays for Python. detect() and set_obstacle_positions() hand the (N, 3)
-// float64 arrays to the detector as views of their memory (no copy here; the detector makes its one copy of the
-// positions, as for a C++ caller) and detect() and earliest_impact() run without the GIL, cancelled by Ctrl-C
-// (KeyboardInterrupt).
+// CollisionDetector and the CCD on query arrays for Python. detect(), the state queries and set_obstacle_positions()
+// hand the (N, 3) float64 arrays to the detector as views of their memory (no copy here; the detector makes its one
+// copy of the positions, as for a C++ caller), and detect(), earliest_impact() and the state queries run without the
+// GIL, cancelled by Ctrl-C (KeyboardInterrupt).
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
@@ -13,6 +13,7 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "state_arrays.hpp"
 #include "clothcd/ccd/ccd.hpp"
 #include "clothcd/culling/network_culler.hpp"
 #include "clothcd/detection/collision_detector.hpp"
@@ -97,6 +98,20 @@ class SignalCheck {
   std::atomic<bool> raised_{false};
 };
 
+/// `query()` on the detector without the GIL, cancelled by Ctrl-C: a signal handler's exception (KeyboardInterrupt)
+/// is what Python sees.
+template <class Query>
+decltype(auto) run_cancellable(CollisionDetector& detector, Query query) {
+  SignalCheck signals(detector);
+  try {
+    nb::gil_scoped_release release;
+    return query();
+  } catch (const DetectionCancelled&) {
+    if (signals.raised()) throw nb::python_error();
+    throw;
+  }
+}
+
 /// The collisions as arrays: kind (0 vertex-face, 1 edge-edge), bodies (n, 4), vertices (n, 4), toi, parameters
 /// (n, 2), normal (n, 3), conservative.
 auto collision_arrays(const std::vector<Collision>& collisions) {
@@ -178,16 +193,8 @@ void bind_detection(nb::module_& m) {
             const PositionsRef x1 = positions_view(end, "x1");
             self.last_start = reinterpret_cast<std::uintptr_t>(x0.data());
             self.last_end = reinterpret_cast<std::uintptr_t>(x1.data());
-            const std::vector<Collision>* collisions = nullptr;
-            SignalCheck signals(self.detector);
-            try {
-              nb::gil_scoped_release release;
-              collisions = &self.detector.detect(x0, x1);
-            } catch (const DetectionCancelled&) {
-              if (signals.raised()) throw nb::python_error();  // the handler's exception, e.g. KeyboardInterrupt
-              throw;
-            }
-            return collision_arrays(*collisions);
+            return collision_arrays(run_cancellable(
+                self.detector, [&]() -> const std::vector<Collision>& { return self.detector.detect(x0, x1); }));
           },
           nb::arg("x0"), nb::arg("x1"))
       .def(
@@ -195,20 +202,47 @@ void bind_detection(nb::module_& m) {
           [](PyDetector& self, const PositionsArray& start, const PositionsArray& end) {
             const PositionsRef x0 = positions_view(start, "x0");
             const PositionsRef x1 = positions_view(end, "x1");
-            EarliestImpact earliest;
-            SignalCheck signals(self.detector);
-            try {
-              nb::gil_scoped_release release;
-              earliest = self.detector.earliest_impact(x0, x1);
-            } catch (const DetectionCancelled&) {
-              if (signals.raised()) throw nb::python_error();
-              throw;
-            }
+            const EarliestImpact earliest =
+                run_cancellable(self.detector, [&] { return self.detector.earliest_impact(x0, x1); });
             const std::vector<Collision> pair = earliest.hit ? std::vector<Collision>{earliest.pair}
                                                              : std::vector<Collision>{};
             return std::make_tuple(earliest.toi, earliest.hit, earliest.windows, collision_arrays(pair));
           },
           nb::arg("x0"), nb::arg("x1"))
+      .def(
+          "proximity",
+          [](PyDetector& self, const PositionsArray& positions, double distance) {
+            const PositionsRef x = positions_view(positions, "x");
+            return proximity_columns(run_cancellable(
+                self.detector, [&]() -> const std::vector<Proximity>& { return self.detector.proximity(x, distance); }));
+          },
+          nb::arg("x"), nb::arg("distance"))
+      .def(
+          "minimum_distance",
+          [](PyDetector& self, const PositionsArray& positions, double upper_bound) {
+            const PositionsRef x = positions_view(positions, "x");
+            const MinimumDistance minimum =
+                run_cancellable(self.detector, [&] { return self.detector.minimum_distance(x, upper_bound); });
+            const std::vector<Proximity> pair = minimum.found ? std::vector<Proximity>{minimum.pair}
+                                                              : std::vector<Proximity>{};
+            return std::make_tuple(minimum.found, minimum.distance, proximity_columns(pair));
+          },
+          nb::arg("x"), nb::arg("upper_bound"))
+      .def(
+          "intersections",
+          [](PyDetector& self, const PositionsArray& positions) {
+            const PositionsRef x = positions_view(positions, "x");
+            return intersection_columns(run_cancellable(
+                self.detector, [&]() -> const std::vector<FaceIntersection>& { return self.detector.intersections(x); }));
+          },
+          nb::arg("x"))
+      .def(
+          "is_intersection_free",
+          [](PyDetector& self, const PositionsArray& positions) {
+            const PositionsRef x = positions_view(positions, "x");
+            return run_cancellable(self.detector, [&] { return self.detector.is_intersection_free(x); });
+          },
+          nb::arg("x"))
       .def("_last_detect_inputs",
            [](const PyDetector& self) { return std::make_tuple(self.last_start, self.last_end); },
            "Addresses of the x0 and x1 data the last detect() handed to the C++ detector.")
@@ -226,6 +260,14 @@ void bind_detection(nb::module_& m) {
         return d;
       });
 
+  m.def(
+      "_closest_feature_contacts",
+      [](const nb::ndarray<const std::uint8_t, nb::c_contig, nb::device::cpu>& kind, const IntArray& bodies,
+         const IntArray& vertices, const nb::ndarray<const double, nb::c_contig, nb::device::cpu>& distance,
+         const nb::ndarray<const std::uint8_t, nb::c_contig, nb::device::cpu>& type) {
+        return contact_columns(closest_feature_contacts(proximities_from_columns(kind, bodies, vertices, distance, type)));
+      },
+      nb::arg("kind"), nb::arg("bodies"), nb::arg("vertices"), nb::arg("distance"), nb::arg("type"));
   m.def(
       "_detect_loop_seconds",
       [](PyDetector& self, const std::vector<DoubleArray>& starts, const std::vector<DoubleArray>& ends) {

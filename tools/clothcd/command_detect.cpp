@@ -7,25 +7,21 @@
 // `--earliest` answers the other question of a step instead: its earliest time of impact and the pair that sets it
 // (CollisionDetector::earliest_impact), the collision-free fraction of the step.
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
-#include <map>
 #include <ostream>
 #include <stdexcept>
-#include <sstream>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "clothcd/culling/network_culler.hpp"
 #include "clothcd/detection/collision_detector.hpp"
 #include "clothcd/mesh/mesh_frames.hpp"
 #include "commands.hpp"
+#include "face_names.hpp"
+#include "json_stream.hpp"
 #include "output_paths.hpp"
 #include "shared_options.hpp"
 
@@ -45,44 +41,6 @@ struct DetectOptions {
   bool earliest = false;
   long max_collisions = DetectorSettings{}.max_collisions;
 };
-
-// The face index of each vertex-face collision in turn (collisions name the face by its three vertices): a face
-// listed several times in the mesh is several faces with the same vertices, named in turn for each vertex that hits
-// them. One sorted row (three vertices, face) per face: 16 bytes a face, nothing per collision but for such faces.
-class FaceNames {
- public:
-  explicit FaceNames(const TriangleMesh& mesh) {
-    rows_.reserve(static_cast<std::size_t>(mesh.face_count()));
-    for (int f = 0; f < static_cast<int>(mesh.face_count()); ++f) {
-      rows_.push_back({mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2), f});
-    }
-    std::sort(rows_.begin(), rows_.end());
-  }
-
-  // The face of the next vertex-face collision `c`.
-  int next(const Collision& c) {
-    const std::array<int, 3> corners{c.vertices[1].vertex, c.vertices[2].vertex, c.vertices[3].vertex};
-    const auto first = std::lower_bound(rows_.begin(), rows_.end(), Row{corners[0], corners[1], corners[2], -1});
-    auto last = first;
-    while (last != rows_.end() && (*last)[0] == corners[0] && (*last)[1] == corners[1] && (*last)[2] == corners[2]) {
-      ++last;
-    }
-    if (first == last) throw std::logic_error("detect: a collision names a face the mesh does not have");
-    if (last - first == 1) return (*first)[3];
-    std::size_t& named = named_[{c.vertices[0].vertex, corners}];
-    const std::size_t k = std::min(named, static_cast<std::size_t>(last - first) - 1);
-    ++named;
-    return first[static_cast<std::ptrdiff_t>(k)][3];
-  }
-
- private:
-  using Row = std::array<int, 4>;
-  std::vector<Row> rows_;
-  std::map<std::pair<int, std::array<int, 3>>, std::size_t> named_;  // (vertex, face vertices) -> faces named so far
-};
-
-// A time in milliseconds to the microsecond (the full 17 digits of the other numbers say nothing here).
-double milliseconds(double ms) { return std::round(ms * 1000.0) / 1000.0; }
 
 // One collision's JSON: its pair (vertex and face index, or two edges), body of each vertex, time of impact, the
 // barycentric weights (vertex-face) or edge parameters (edge-edge), the contact normal, and whether it is conservative.
@@ -132,53 +90,19 @@ Json detect_json_head(const DetectOptions& o, const TriangleMesh& mesh, const st
   return report;
 }
 
-// `text` with `indent` after each line break.
-std::string indented(const std::string& text, const std::string& indent) {
-  std::string result;
-  result.reserve(text.size());
-  for (const char ch : text) {
-    result += ch;
-    if (ch == '\n') result += indent;
-  }
-  return result;
-}
-
-// Writes the array field `name` of the report's top level, one collision of `kind` at a time, as Json::dump(2) writes
-// it within the report.
-void write_collisions(std::ostream& out, const char* name, PairKind kind, const std::vector<Collision>& collisions,
-                      FaceNames& faces) {
-  out << ",\n  \"" << name << "\": [";
-  bool first = true;
-  for (const Collision& c : collisions) {
-    if (c.kind != kind) continue;
-    const Json item = collision_json(c, kind == PairKind::VertexFace ? faces.next(c) : -1);
-    out << (first ? "\n    " : ",\n    ") << indented(item.dump(2), "    ");
-    first = false;
-  }
-  out << (first ? "]" : "\n  ]");
-}
-
-// Writes the report: the bytes Json::dump(2) gives for the head with the "vertex_face" and "edge_edge" arrays
-// appended, and a line break.
+// Writes the report: the head with the "vertex_face" and "edge_edge" arrays appended.
 void write_detect_json(std::ostream& out, const Json& head, const TriangleMesh& mesh,
                        const std::vector<Collision>& collisions) {
-  const std::string text = head.dump(2);
-  out.write(text.data(), static_cast<std::streamsize>(text.size() - 2));  // without the closing "\n}"
+  JsonStream stream(out, head);
   FaceNames faces(mesh);
-  write_collisions(out, "vertex_face", PairKind::VertexFace, collisions, faces);
-  write_collisions(out, "edge_edge", PairKind::EdgeEdge, collisions, faces);
-  out << "\n}\n";
-}
-
-// Writes the JSON report `report` to stdout (with --json) and to --out.
-void write_report(const DetectOptions& o, const Json& report) {
-  if (o.json) std::cout << report.dump(2) << '\n';
-  if (o.out.empty()) return;
-  std::ofstream file(o.out);
-  if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
-  file << report.dump(2) << '\n';
-  file.close();  // flushes: a full disk shows here
-  if (!file) throw std::runtime_error(o.out + ": write failed");
+  for (const PairKind kind : {PairKind::VertexFace, PairKind::EdgeEdge}) {
+    stream.array(kind == PairKind::VertexFace ? "vertex_face" : "edge_edge", [&](const auto& write) {
+      for (const Collision& c : collisions) {
+        if (c.kind == kind) write(collision_json(c, kind == PairKind::VertexFace ? faces.next(c.vertices) : -1));
+      }
+    });
+  }
+  stream.close();
 }
 
 // --earliest: the step's earliest time of impact and the pair that sets it.
@@ -194,10 +118,10 @@ void report_earliest(const DetectOptions& o, CollisionDetector& detector, const 
     report["earliest"] = {{"toi", e.toi},
                           {"hit", e.hit},
                           {"windows", e.windows},
-                          {"pair", e.hit ? collision_json(e.pair, e.pair.kind == PairKind::VertexFace ? faces.next(e.pair)
+                          {"pair", e.hit ? collision_json(e.pair, e.pair.kind == PairKind::VertexFace ? faces.next(e.pair.vertices)
                                                                                                        : -1)
                                          : Json(nullptr)}};
-    write_report(o, report);
+    write_to(o.json, o.out, [&](std::ostream& out) { out << report.dump(2) << '\n'; });
     if (o.json) return;
   }
   std::cout << "mesh:        " << t0.vertex_count() << " vertices, " << t0.face_count() << " faces (one deformable "
@@ -248,14 +172,7 @@ void run_detect(const DetectOptions& o) {
   const DetectionStats& s = detector.stats();
   if (o.json || !o.out.empty()) {
     const Json head = detect_json_head(o, t0, collisions, s, load_ms);
-    if (o.json) write_detect_json(std::cout, head, t0, collisions);
-    if (!o.out.empty()) {
-      std::ofstream file(o.out);
-      if (!file) throw std::runtime_error(o.out + ": cannot open for writing");
-      write_detect_json(file, head, t0, collisions);
-      file.close();  // flushes: a full disk shows here
-      if (!file) throw std::runtime_error(o.out + ": write failed");
-    }
+    write_to(o.json, o.out, [&](std::ostream& out) { write_detect_json(out, head, t0, collisions); });
     if (o.json) return;
   }
   long vf = 0;

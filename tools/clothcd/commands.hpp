@@ -83,6 +83,10 @@ void add_convert_command(CLI::App& app);
 void add_meshes_command(CLI::App& app);
 /// Adds `clothcd detect T0_MESH T1_MESH [--thickness H] [--bvh KIND] [--filter F] [--json] [--out FILE.json]`.
 void add_detect_command(CLI::App& app);
+/// Adds `clothcd proximity MESH --distance D [--minimum] [--contacts] [--bvh KIND] [--json] [--out FILE.json]`.
+void add_proximity_command(CLI::App& app);
+/// Adds `clothcd intersections MESH [--free] [--bvh KIND] [--json] [--out FILE.json]`.
+void add_intersections_command(CLI::App& app);
 /// Adds `clothcd ccd PATH [--type vf|ee] [--filter ...] [--thickness H] [--json] [--per-query FILE]`.
 void add_ccd_command(CLI::App& app);
 /// Adds `clothcd simplify IN OUT (--ratio R | --faces N) [--non-edge-threshold D] [--hausdorff]`.

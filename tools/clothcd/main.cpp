@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
   clothcd::cli::add_convert_command(app);
   clothcd::cli::add_meshes_command(app);
   clothcd::cli::add_detect_command(app);
+  clothcd::cli::add_proximity_command(app);
+  clothcd::cli::add_intersections_command(app);
   clothcd::cli::add_ccd_command(app);
   clothcd::cli::add_simplify_command(app);
   clothcd::cli::add_obb_command(app);
