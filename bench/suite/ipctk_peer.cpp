@@ -150,6 +150,28 @@ std::vector<CollisionKey> read_peer_hits(const fs::path& hits_file, double& earl
   return hits;
 }
 
+PeerState run_peer_state(const fs::path& python, const fs::path& script, const fs::path& scene_bin, double dhat,
+                         int repeats, const fs::path& contacts_file) {
+  std::ostringstream distance;
+  distance.precision(17);
+  distance << dhat;
+  const ChildRun run = run_child({python.string(), script.string(), scene_bin.string(), "--dhat", distance.str(),
+                                  "--threads", "1", "--repeats", std::to_string(repeats), "--contacts",
+                                  contacts_file.string()}, 1);
+  if (run.exit_code != 0) throw peer_failure(scene_bin.string(), run);
+  const std::map<std::string, double> values = peer_values(run.output);
+  const std::string what = scene_bin.string();
+  PeerState peer;
+  const char* const types[] = {"vv", "ev", "ee", "fv"};
+  for (int t = 0; t < 4; ++t) peer.counts[t] = static_cast<long>(value(values, types[t], what, run));
+  peer.build_ms = value(values, "build_ms", what, run);
+  peer.build_min_ms = value(values, "build_min_ms", what, run);
+  peer.min_distance = value(values, "min_distance", what, run);
+  peer.has_intersections_ms = value(values, "has_intersections_ms", what, run);
+  peer.has_intersections = value(values, "has_intersections", what, run) != 0;
+  return peer;
+}
+
 PeerQueries run_peer_queries(const fs::path& python, const fs::path& script, const std::vector<ccd::CcdQuery>& queries,
                              const fs::path& scratch, int repeats) {
   const fs::path input = scratch / "peer-queries.bin", hits_file = scratch / "peer-query-hits.txt";

@@ -5,6 +5,7 @@
 /// narrow phase (bench/peers/ipctk_narrow_phase.py) on a step's own LBVH candidates or on single queries, read back
 /// into the bench's collision keys.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -70,6 +71,22 @@ struct PeerNarrowPhase {
 /// Reads the hits a per-pair run wrote (`vf VERTEX FACE TOI` / `ee A0 A1 B0 B1 TOI` lines) as sorted keys, and their
 /// smallest toi into `earliest_toi`. Throws std::runtime_error naming the file on a malformed line.
 [[nodiscard]] std::vector<CollisionKey> read_peer_hits(const std::filesystem::path& hits_file, double& earliest_toi);
+
+/// The peer's questions of one state (bench/peers/ipctk_state.py), best times over its repeats, one thread.
+struct PeerState {
+  std::array<long, 4> counts{};  ///< Its active set by type: vertex-vertex, edge-vertex, edge-edge, face-vertex.
+  double build_ms = 0;           ///< NormalCollisions.build with its LBVH broad phase.
+  double build_min_ms = 0;       ///< That build followed by compute_minimum_distance.
+  double min_distance = 0;       ///< The minimum distance over the active set (infinite when it is empty).
+  double has_intersections_ms = 0;  ///< has_intersections with its LBVH broad phase.
+  bool has_intersections = false;   ///< Its answer.
+};
+
+/// Runs `script scene_bin --dhat D --threads 1 --repeats R --contacts contacts_file` with `python` on one CPU (the
+/// scene's start positions are the state). Throws std::runtime_error with its output when it fails.
+[[nodiscard]] PeerState run_peer_state(const std::filesystem::path& python, const std::filesystem::path& script,
+                                       const std::filesystem::path& scene_bin, double dhat, int repeats,
+                                       const std::filesystem::path& contacts_file);
 
 /// The peer's answers on single queries.
 struct PeerQueries {
