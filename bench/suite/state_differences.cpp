@@ -67,6 +67,14 @@ mpq_class contact_squared_distance(const ContactKey& key, const Vertices& positi
   }
 }
 
+// The IPC Toolkit's mollifier rule for an edge-edge key (see ContactDifference::nearly_parallel).
+bool nearly_parallel(const ContactKey& key, const Vertices& positions) {
+  if (key[0] != kEdgeEdge) return false;
+  const Eigen::Vector3d a = at(positions, key[2]) - at(positions, key[1]);
+  const Eigen::Vector3d b = at(positions, key[4]) - at(positions, key[3]);
+  return a.cross(b).squaredNorm() < 1e-3 * a.squaredNorm() * b.squaredNorm();
+}
+
 // The keys in `a` and not in `b` (both sorted).
 template <class Key>
 std::vector<Key> only_in(const std::vector<Key>& a, const std::vector<Key>& b) {
@@ -127,7 +135,8 @@ std::vector<ContactDifference> contact_differences(const std::vector<ContactKey>
   for (const bool mine : {true, false})
     for (const ContactKey& key : mine ? only_in(ours, peer) : only_in(peer, ours)) {
       const mpq_class squared = contact_squared_distance(key, positions);
-      differences.push_back({key, mine, std::sqrt(squared.get_d()), squared < limit});
+      differences.push_back(
+          {key, mine, std::sqrt(squared.get_d()), squared < limit, nearly_parallel(key, positions)});
     }
   return differences;
 }

@@ -38,6 +38,9 @@ struct ContactDifference {
   bool ours = false;            ///< Only we report it (else only the peer).
   double distance = 0;          ///< Its features' exact distance, rounded.
   bool exact_below = false;     ///< Exactly closer than the asked distance.
+  /// Edge-edge: the edges are nearly parallel by the IPC Toolkit's mollifier rule (|ea x eb|^2 < 1e-3 |ea|^2 |eb|^2,
+  /// on these positions), for which it keeps an edge-edge contact whatever the closest features.
+  bool nearly_parallel = false;
 };
 
 /// The contacts in exactly one of `ours` and `peer` (both sorted), ours first, each with its exact distance at
