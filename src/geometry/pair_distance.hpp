@@ -101,7 +101,11 @@ enum class FaceRounding {
                                                      const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                                                      FaceRounding rounding = FaceRounding::Quotient);
 
-/// Squared distance between the closed segments p1 q1 and p2 q2 (either may be a point).
+/// The closest point of the closed segment p1 q1 minus that of p2 q2 (either may be a point).
+[[nodiscard]] Eigen::Vector3d segment_segment_offset(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
+                                                     const Eigen::Vector3d& p2, const Eigen::Vector3d& q2);
+
+/// Squared distance between the closed segments p1 q1 and p2 q2 (either may be a point; segment_segment_offset's).
 [[nodiscard]] double segment_segment_distance_squared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
                                                       const Eigen::Vector3d& p2, const Eigen::Vector3d& q2);
 

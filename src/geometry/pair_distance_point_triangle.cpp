@@ -1,4 +1,5 @@
-// The vertex-face filter of the pair distances. After two cheap certain rejections (a box axis, the triangle's plane)
+// The vertex-face filter of the pair distances. After three cheap certain rejections (a box axis, a separating
+// direction from approximate closest points, the triangle's plane)
 // the closest point's cell is certified: vertex k when p - t_k has negative dot products with both edges leaving t_k
 // (the inside of its normal cone), edge k when p lies strictly outside the edge's side and projects strictly inside
 // it, the face when p lies strictly inside all three sides. Strict signs make the cell, and so the type, exact: no
@@ -9,6 +10,7 @@
 #include <algorithm>
 
 #include "geometry/pair_distance_filter.hpp"
+#include "geometry/pair_distance_separation.hpp"
 
 namespace clothcd::geometry {
 
@@ -46,10 +48,14 @@ Outcome point_triangle_filter(const Eigen::Vector3d& p, const Eigen::Vector3d& t
                               const Eigen::Vector3d& t2, double d, bool limited, PairDistance& out) {
   if (!filter::in_range({&p, &t0, &t1, &t2})) return Outcome::Undecided;
   if (limited && box_apart(p, t0, t1, t2, d)) return Outcome::Apart;
+  const std::array<BoundedVector<1>, 3> to_p{difference(p, t0), difference(p, t1), difference(p, t2)};
+  if (limited) {
+    const Eigen::Vector3d guess = p - closest_point_on_triangle(p, t0, t1, t2);
+    if (filter::separated_along(guess, d, to_p[0], to_p[1], to_p[2])) return Outcome::Apart;
+  }
   // edge[k] runs from t_k to t_{k+1}; n = (t1 - t0) x (t2 - t0).
   const std::array<BoundedVector<1>, 3> edge{difference(t1, t0), difference(t2, t1), difference(t0, t2)};
   const BoundedVector<4> n = cross(edge[2], edge[0]);
-  const std::array<BoundedVector<1>, 3> to_p{difference(p, t0), difference(p, t1), difference(p, t2)};
   const Bounded<8> height = dot(to_p[0], n);
   const Bounded<11> area_squared = dot(n, n);
   // The plane's distance |height| / |n| is at most the triangle's.

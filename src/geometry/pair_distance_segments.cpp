@@ -1,5 +1,5 @@
-// The edge-edge filter of the pair distances. After two cheap certain rejections (a box axis, the distance of the
-// two lines) the cell of the closest pair is certified on the parameter square of F(s, u) = |a0 + s da - b0 - u db|^2,
+// The edge-edge filter of the pair distances. After three cheap certain rejections (a box axis, a separating direction
+// from approximate closest points, the distance of the two lines) the cell of the closest pair is certified on the parameter square of F(s, u) = |a0 + s da - b0 - u db|^2,
 // a convex function, by the strict Karush-Kuhn-Tucker conditions of one cell: at a corner both partial derivatives
 // point strictly inwards, on a side the free parameter is strictly inside (0, 1) and the other derivative points
 // strictly inwards, inside both parameters are strictly inside. Strictly satisfied conditions make that parameter pair
@@ -11,6 +11,7 @@
 #include <algorithm>
 
 #include "geometry/pair_distance_filter.hpp"
+#include "geometry/pair_distance_separation.hpp"
 
 namespace clothcd::geometry {
 
@@ -59,6 +60,13 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
                                const Eigen::Vector3d& b1, double d, bool limited, PairDistance& out) {
   if (!filter::in_range({&a0, &a1, &b0, &b1})) return Outcome::Undecided;
   if (limited && box_apart(a0, a1, b0, b1, d)) return Outcome::Apart;
+  // x[i][j] = a_i - b_j.
+  const std::array<std::array<BoundedVector<1>, 2>, 2> x{
+      {{difference(a0, b0), difference(a0, b1)}, {difference(a1, b0), difference(a1, b1)}}};
+  if (limited) {
+    if (filter::separated_along(segment_segment_offset(a0, a1, b0, b1), d, x[0][0], x[0][1], x[1][0], x[1][1]))
+      return Outcome::Apart;
+  }
   const BoundedVector<1> da = difference(a1, a0), db = difference(b1, b0), w = difference(b0, a0);
   const BoundedVector<4> n = cross(da, db);
   const Bounded<8> height = dot(w, n);
@@ -67,9 +75,6 @@ Outcome segment_segment_filter(const Eigen::Vector3d& a0, const Eigen::Vector3d&
   const int lines_within = limited ? filter::within_sign(height * height, cross_squared, d) : 0;
   if (lines_within < 0) return Outcome::Apart;
 
-  // x[i][j] = a_i - b_j.
-  const std::array<std::array<BoundedVector<1>, 2>, 2> x{
-      {{difference(a0, b0), difference(a0, b1)}, {difference(a1, b0), difference(a1, b1)}}};
   const Bounded<11> s0 = dot(cross(w, db), n), s1 = dot(cross(x[1][0], db), n);
   const Bounded<11> u0 = dot(cross(w, da), n), u1 = dot(cross(x[0][1], da), n);
   const std::array<int, 2> s_inside{sign(s0), sign(s1)}, u_inside{sign(u0), sign(u1)};

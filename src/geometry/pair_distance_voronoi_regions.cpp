@@ -35,13 +35,13 @@ double point_triangle_distance_squared(const Eigen::Vector3d& p, const Eigen::Ve
   return (closest_point_on_triangle(p, a, b, c, rounding) - p).squaredNorm();
 }
 
-double segment_segment_distance_squared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
-                                        const Eigen::Vector3d& p2, const Eigen::Vector3d& q2) {
+Eigen::Vector3d segment_segment_offset(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                                       const Eigen::Vector3d& q2) {
   const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
   constexpr double kTiny = 1e-300;
   double s = 0, t = 0;
-  if (a <= kTiny && e <= kTiny) return r.squaredNorm();
+  if (a <= kTiny && e <= kTiny) return r;
   if (a <= kTiny) {
     t = std::clamp(f / e, 0.0, 1.0);
   } else {
@@ -61,7 +61,12 @@ double segment_segment_distance_squared(const Eigen::Vector3d& p1, const Eigen::
       }
     }
   }
-  return ((p1 + s * d1) - (p2 + t * d2)).squaredNorm();
+  return (p1 + s * d1) - (p2 + t * d2);
+}
+
+double segment_segment_distance_squared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
+                                        const Eigen::Vector3d& p2, const Eigen::Vector3d& q2) {
+  return segment_segment_offset(p1, q1, p2, q2).squaredNorm();
 }
 
 }  // namespace clothcd::geometry
